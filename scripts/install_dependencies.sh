@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Installs the Debian packages that CGAL Metric Frames needs to build and
+# test. Idempotent: apt-get runs only if a package is missing. Needs root
+# (or sudo) on Debian bookworm.
+set -euo pipefail
+
+packages=(build-essential cmake libcgal-dev libeigen3-dev libboost-dev catch2 libtbb-dev libgmp-dev libmpfr-dev)
+
+missing=()
+for p in "${packages[@]}"; do
+  if [ "$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null)" != "install ok installed" ]; then
+    missing+=("$p")
+  fi
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "[deps] all dependencies are installed" >&2
+  exit 0
+fi
+echo "[deps] installing: ${missing[*]}" >&2
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

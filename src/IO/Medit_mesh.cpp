@@ -1,0 +1,188 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#include <CGAL_ext/IO/Medit_mesh.h>
+#include <CGAL_ext/IO/Medit_tokenizer.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string_view>
+
+namespace CGAL_ext {
+namespace IO {
+
+namespace {
+
+// Sections we read over: name and number of tokens per record.
+struct Skipped_section {
+  const char* name;
+  std::size_t tokens;
+};
+constexpr Skipped_section skipped_sections[] = {
+    {"Corners", 1},          {"RequiredVertices", 1},   {"Ridges", 1},
+    {"RequiredEdges", 1},    {"RequiredTriangles", 1},  {"RequiredQuadrilaterals", 1},
+    {"RequiredTetrahedra", 1}, {"RequiredHexahedra", 1}, {"Quadrilaterals", 5},
+    {"Hexahedra", 9},        {"Prisms", 7},             {"Pyramids", 6},
+    {"Normals", 3},          {"NormalAtVertices", 2},   {"Tangents", 3},
+    {"TangentAtVertices", 2}, {"NormalAtTriangleVertices", 3}, {"NormalAtQuadrilateralVertices", 3},
+    {"TangentAtEdgeVertices", 3}, {"Crack", 2}, {"Identifier", 0}, {"Geometry", 0}};
+
+// Reads `count` records of N vertex indices and a reference, checking each index.
+template <std::size_t N>
+void read_cells(Medit_tokenizer& tk, const char* section, const char* element, std::size_t count,
+                std::vector<std::array<std::size_t, N>>& cells, std::vector<int>& refs,
+                std::vector<std::size_t>* lines) {
+  cells.resize(count);
+  refs.resize(count);
+  if (lines) lines->resize(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t j = 0; j < N; ++j) {
+      const std::int64_t v = tk.read_int("a vertex index");
+      if (j == 0 && lines) (*lines)[i] = tk.line();
+      if (v <= 0)
+        tk.fail(std::string(element) + " " + std::to_string(i + 1),
+                "vertex index " + std::to_string(v) + " is not positive (" + section + " indices are 1-based)");
+      cells[i][j] = static_cast<std::size_t>(v - 1);
+    }
+    const std::int64_t r = tk.read_int("a reference");
+    refs[i] = static_cast<int>(r);
+  }
+}
+
+} // namespace
+
+Medit_mesh read_medit_mesh(const std::string& path) {
+  Medit_tokenizer tk(path);
+  Medit_mesh m;
+  bool have_vertices = false, have_tets = false, have_version = false;
+  std::size_t tet_section_line = 0;
+  std::string_view kw;
+  while (tk.next(kw)) {
+    if (Medit_tokenizer::keyword_equals(kw, "MeshVersionFormatted")) {
+      const auto v = tk.read_int("the MeshVersionFormatted value");
+      if (v < 1 || v > 4) tk.fail("", "unsupported MeshVersionFormatted " + std::to_string(v));
+      m.version = static_cast<int>(v);
+      have_version = true;
+    } else if (Medit_tokenizer::keyword_equals(kw, "Dimension")) {
+      const auto d = tk.read_int("the Dimension value");
+      if (d != 3)
+        tk.fail("", "Dimension " + std::to_string(d) + ": only 3D tetrahedral meshes are supported");
+    } else if (Medit_tokenizer::keyword_equals(kw, "Vertices")) {
+      if (have_vertices) tk.fail("", "a second Vertices section");
+      const std::size_t n = tk.read_count("Vertices", 4);
+      m.vertices.resize(n);
+      m.vertex_references.resize(n);
+      m.vertex_lines.resize(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        for (int k = 0; k < 3; ++k) {
+          try {
+            m.vertices[i][k] = tk.read_double("a coordinate");
+          } catch (const Input_error& e) {
+            throw Input_error(path, e.line(), "vertex " + std::to_string(i + 1), e.problem());
+          }
+          if (k == 0) m.vertex_lines[i] = tk.line();
+        }
+        m.vertex_references[i] = static_cast<int>(tk.read_int("a vertex reference"));
+      }
+      have_vertices = true;
+    } else if (Medit_tokenizer::keyword_equals(kw, "Tetrahedra")) {
+      if (have_tets) tk.fail("", "a second Tetrahedra section");
+      tet_section_line = tk.line();
+      const std::size_t n = tk.read_count("Tetrahedra", 5);
+      read_cells<4>(tk, "Tetrahedra", "tetrahedron", n, m.tetrahedra, m.tetrahedron_references, &m.tetrahedron_lines);
+      have_tets = true;
+    } else if (Medit_tokenizer::keyword_equals(kw, "Triangles")) {
+      const std::size_t n = tk.read_count("Triangles", 4);
+      read_cells<3>(tk, "Triangles", "triangle", n, m.triangles, m.triangle_references, nullptr);
+    } else if (Medit_tokenizer::keyword_equals(kw, "Edges")) {
+      const std::size_t n = tk.read_count("Edges", 3);
+      read_cells<2>(tk, "Edges", "edge", n, m.edges, m.edge_references, nullptr);
+    } else if (Medit_tokenizer::keyword_equals(kw, "End")) {
+      break;
+    } else {
+      const Skipped_section* s = nullptr;
+      for (const auto& candidate : skipped_sections)
+        if (Medit_tokenizer::keyword_equals(kw, candidate.name)) s = &candidate;
+      if (!s) {
+        const bool numeric = !kw.empty() && (std::isdigit(static_cast<unsigned char>(kw[0])) || kw[0] == '-' || kw[0] == '.');
+        tk.fail("", numeric ? "unexpected number '" + std::string(kw.substr(0, 40)) +
+                                  "' where a section keyword was expected (a count does not match its section?)"
+                            : "unknown keyword '" + std::string(kw.substr(0, 40)) + "'");
+      }
+      if (s->tokens == 0) { // a string value (Identifier, Geometry): one token
+        tk.expect("a value");
+        continue;
+      }
+      const std::size_t n = tk.read_count(s->name, s->tokens);
+      std::string_view t;
+      for (std::size_t i = 0; i < n * s->tokens; ++i) t = tk.expect((std::string("a record of ") + s->name).c_str());
+    }
+  }
+  (void)have_version;
+  if (!have_vertices) throw Input_error(path, 0, "", "no Vertices section");
+  if (!have_tets)
+    throw Input_error(path, 0, "", "no Tetrahedra section: this is not a volume mesh (a surface or 2D mesh?)");
+  if (m.tetrahedra.empty()) throw Input_error(path, tet_section_line, "", "the Tetrahedra section is empty");
+
+  // Indices were checked to be positive; check the upper bound now that all sections are read.
+  const std::size_t nv = m.vertices.size();
+  auto check = [&](const auto& cells, const char* element, const std::vector<std::size_t>* lines) {
+    for (std::size_t i = 0; i < cells.size(); ++i)
+      for (std::size_t v : cells[i])
+        if (v >= nv)
+          throw Input_error(path, lines ? (*lines)[i] : 0, std::string(element) + " " + std::to_string(i + 1),
+                            "vertex index " + std::to_string(v + 1) + " is out of range 1.." + std::to_string(nv) +
+                                " (" + std::to_string(nv) + (nv == 1 ? " vertex" : " vertices") + " in the file)");
+  };
+  check(m.tetrahedra, "tetrahedron", &m.tetrahedron_lines);
+  check(m.triangles, "triangle", nullptr);
+  check(m.edges, "edge", nullptr);
+  return m;
+}
+
+void write_medit_mesh(const std::string& path, const Medit_mesh& m) {
+  const std::string tmp = path + ".tmp-write";
+  {
+    std::FILE* f = std::fopen(tmp.c_str(), "w");
+    if (!f) throw std::runtime_error(path + ": cannot open for writing");
+    std::fprintf(f, "MeshVersionFormatted 2\n\nDimension 3\n\nVertices\n%zu\n", m.vertices.size());
+    for (std::size_t i = 0; i < m.vertices.size(); ++i)
+      std::fprintf(f, "%.17g %.17g %.17g %d\n", m.vertices[i][0], m.vertices[i][1], m.vertices[i][2],
+                   i < m.vertex_references.size() ? m.vertex_references[i] : 0);
+    std::fprintf(f, "\nTetrahedra\n%zu\n", m.tetrahedra.size());
+    for (std::size_t i = 0; i < m.tetrahedra.size(); ++i) {
+      const auto& t = m.tetrahedra[i];
+      std::fprintf(f, "%zu %zu %zu %zu %d\n", t[0] + 1, t[1] + 1, t[2] + 1, t[3] + 1,
+                   i < m.tetrahedron_references.size() ? m.tetrahedron_references[i] : 0);
+    }
+    if (!m.triangles.empty()) {
+      std::fprintf(f, "\nTriangles\n%zu\n", m.triangles.size());
+      for (std::size_t i = 0; i < m.triangles.size(); ++i) {
+        const auto& t = m.triangles[i];
+        std::fprintf(f, "%zu %zu %zu %d\n", t[0] + 1, t[1] + 1, t[2] + 1,
+                     i < m.triangle_references.size() ? m.triangle_references[i] : 0);
+      }
+    }
+    if (!m.edges.empty()) {
+      std::fprintf(f, "\nEdges\n%zu\n", m.edges.size());
+      for (std::size_t i = 0; i < m.edges.size(); ++i)
+        std::fprintf(f, "%zu %zu %d\n", m.edges[i][0] + 1, m.edges[i][1] + 1,
+                     i < m.edge_references.size() ? m.edge_references[i] : 0);
+    }
+    std::fprintf(f, "\nEnd\n");
+    const bool ok = std::ferror(f) == 0;
+    if (std::fclose(f) != 0 || !ok) {
+      std::remove(tmp.c_str());
+      throw std::runtime_error(path + ": write error");
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::remove(tmp.c_str());
+    throw std::runtime_error(path + ": cannot move the written file into place: " + ec.message());
+  }
+}
+
+} // namespace IO
+} // namespace CGAL_ext

@@ -1,0 +1,114 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// What every subcommand of metric-frames shares: argument parsing with
+// usage errors (exit 2), and stage timing on stderr.
+#ifndef CGAL_EXT_CLI_COMMON_H
+#define CGAL_EXT_CLI_COMMON_H
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace CGAL_ext::cli {
+
+/// A mistake in the command line; main() prints it with the usage and exits with 2.
+struct Usage_error : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Minimal parser: `--name VALUE` options, `--flag` flags and positionals, in any order.
+/// Every argument must be consumed; finish() rejects the rest.
+class Arguments {
+public:
+  Arguments(std::vector<std::string> args, std::string command, const char* help)
+      : args_(std::move(args)), used_(args_.size(), false), command_(std::move(command)), help_(help) {
+    for (std::size_t i = 0; i < args_.size(); ++i)
+      if (args_[i] == "-h" || args_[i] == "--help") {
+        std::cout << help_;
+        help_requested_ = true;
+      }
+  }
+  bool help_requested() const { return help_requested_; }
+
+  /// The value of `--name VALUE` or `--name=VALUE`, if given.
+  std::optional<std::string> option(const std::string& name) {
+    for (std::size_t i = 0; i < args_.size(); ++i) {
+      if (used_[i]) continue;
+      if (args_[i] == name) {
+        if (i + 1 >= args_.size()) fail("option " + name + " needs a value");
+        used_[i] = used_[i + 1] = true;
+        return args_[i + 1];
+      }
+      if (args_[i].rfind(name + "=", 0) == 0) {
+        used_[i] = true;
+        return args_[i].substr(name.size() + 1);
+      }
+    }
+    return std::nullopt;
+  }
+  /// The value of a required option.
+  std::string required_option(const std::string& name) {
+    auto v = option(name);
+    if (!v) fail("missing option " + name);
+    return *v;
+  }
+  /// Whether `--name` is given.
+  bool flag(const std::string& name) {
+    for (std::size_t i = 0; i < args_.size(); ++i)
+      if (!used_[i] && args_[i] == name) return used_[i] = true;
+    return false;
+  }
+  /// The next positional argument; `what` names it in the error if missing.
+  std::string positional(const std::string& what) {
+    for (std::size_t i = 0; i < args_.size(); ++i)
+      if (!used_[i] && (args_[i].empty() || args_[i][0] != '-' || args_[i] == "-")) {
+        used_[i] = true;
+        return args_[i];
+      }
+    fail("missing argument " + what);
+  }
+  /// Rejects any argument that was not consumed.
+  void finish() {
+    for (std::size_t i = 0; i < args_.size(); ++i)
+      if (!used_[i]) fail("unexpected argument '" + args_[i] + "'");
+  }
+  [[noreturn]] void fail(const std::string& message) const {
+    throw Usage_error(message + " (see metric-frames " + command_ + " --help)");
+  }
+
+private:
+  std::vector<std::string> args_;
+  std::vector<bool> used_;
+  std::string command_;
+  const char* help_;
+  bool help_requested_ = false;
+};
+
+/// Prints "[stage] name  1.23 s" lines on stderr, and a total at the end.
+class Stage_timer {
+public:
+  using Clock = std::chrono::steady_clock;
+  Stage_timer() : start_(Clock::now()), last_(start_) {}
+  void stage(const char* name) {
+    const auto now = Clock::now();
+    std::fprintf(stderr, "[stage] %-22s %8.3f s\n", name, std::chrono::duration<double>(now - last_).count());
+    last_ = now;
+  }
+  void summary() const {
+    std::fprintf(stderr, "[done]  %-22s %8.3f s\n", "total",
+                 std::chrono::duration<double>(Clock::now() - start_).count());
+  }
+
+private:
+  Clock::time_point start_, last_;
+};
+
+} // namespace CGAL_ext::cli
+
+#endif

@@ -1,0 +1,21 @@
+// The subcommands of the metric-frames tool. Each takes the arguments after
+// its name, prints its output on stdout and its progress and errors on
+// stderr, and returns the process exit code (0 success, 1 bad input or
+// failure, 2 bad usage).
+#ifndef CGAL_EXT_CLI_COMMANDS_H
+#define CGAL_EXT_CLI_COMMANDS_H
+
+#include <string>
+#include <vector>
+
+namespace CGAL_ext::cli {
+
+/// `metric-frames info MESH`: counts, bounding box, volume, dihedral angles.
+int command_info(const std::vector<std::string>& args);
+
+/// `metric-frames walk MESH --segments FILE`: the simplices met by segments, as JSON lines.
+int command_walk(const std::vector<std::string>& args);
+
+} // namespace CGAL_ext::cli
+
+#endif

@@ -1,0 +1,214 @@
+// Building a Tet_mesh_triangulation_3 from tetrahedra: adjacency, boundary
+// closure (also around non-manifold edges), re-orientation, and errors.
+#include <CGAL_ext/IO/read_tet_mesh.h>
+#include <CGAL_ext/Tet_mesh_statistics_3.h>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+using namespace CGAL_ext;
+using Tr = Tet_mesh_triangulation_3<>;
+
+namespace {
+
+const std::string data_dir = CGAL_EXT_TEST_DATA_DIR;
+
+// Combinatorial validity that does not assume one connected component
+// (CGAL's TDS check also tests the Euler relation of a 3-sphere).
+void check_adjacency(const Tr& tr) {
+  std::size_t finite = 0;
+  for (auto c : tr.all_cell_handles()) {
+    for (int i = 0; i < 4; ++i) {
+      auto n = c->neighbor(i);
+      REQUIRE(n != Tr::Cell_handle());
+      REQUIRE(n->has_neighbor(c));
+      const int j = n->index(c);
+      CHECK(n->neighbor(j) == c);
+      for (int k = 1; k < 4; ++k) CHECK(n->has_vertex(c->vertex((i + k) % 4)));
+      CHECK_FALSE(n->has_vertex(c->vertex(i)));
+    }
+    if (!tr.is_infinite(c)) {
+      ++finite;
+      CHECK(CGAL::orientation(c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(),
+                              c->vertex(3)->point()) == CGAL::POSITIVE);
+      CHECK(c->info().in_domain());
+    } else {
+      CHECK_FALSE(c->info().in_domain());
+    }
+  }
+  for (auto v : tr.finite_vertex_handles()) CHECK(v->cell()->has_vertex(v));
+  CHECK(finite == tr.number_of_finite_cells());
+}
+
+Tet_mesh_build_report build(const std::vector<std::array<double, 3>>& p, const std::vector<std::array<std::size_t, 4>>& t,
+                            Tr& tr) {
+  return build_triangulation_from_tets(p, t, {}, tr);
+}
+
+} // namespace
+
+TEST_CASE("a Kuhn-subdivided cube builds into a valid CGAL triangulation", "[build]") {
+  Tr tr;
+  IO::Medit_mesh m;
+  const auto r = IO::read_tet_mesh(data_dir + "/cube_kuhn_2.mesh", tr, &m);
+  CHECK(r.reoriented_tets == 0);
+  CHECK(r.boundary_facets == 48);
+  CHECK(r.non_manifold_boundary_edges == 0);
+  CHECK(tr.is_valid()); // convex: CGAL's own full check applies
+  check_adjacency(tr);
+  CHECK(tr.number_of_finite_cells() == 48);
+  CHECK(tr.number_of_vertices() == 27);
+  // Cells keep their file index and vertices theirs.
+  std::set<std::int64_t> indices;
+  for (auto c : tr.finite_cell_handles()) {
+    indices.insert(c->info().index);
+    CHECK(c->info().reference == 1);
+    std::multiset<std::size_t> file(m.tetrahedra[c->info().index].begin(), m.tetrahedra[c->info().index].end());
+    std::multiset<std::size_t> cell;
+    for (int i = 0; i < 4; ++i) cell.insert(c->vertex(i)->info());
+    CHECK(file == cell);
+  }
+  CHECK(indices.size() == 48);
+  for (auto v : tr.finite_vertex_handles()) {
+    const auto& p = m.vertices[v->info()];
+    CHECK(v->point() == Tr::Point(p[0], p[1], p[2]));
+  }
+  const auto s = compute_tet_mesh_statistics(tr, Is_tet_mesh_domain_cell());
+  CHECK(s.components == 1);
+  CHECK(s.volume == Approx(8.0).epsilon(1e-14));
+  CHECK(s.boundary_facets == 48);
+  CHECK(s.min_dihedral_angle == Approx(45.0));
+  CHECK(s.max_dihedral_angle == Approx(90.0));
+}
+
+TEST_CASE("negatively oriented tetrahedra are re-oriented and reported", "[build]") {
+  Tr tr;
+  const auto r = IO::read_tet_mesh(data_dir + "/reoriented.mesh", tr);
+  CHECK(r.reoriented_tets == 16); // every third of 48
+  REQUIRE(r.reoriented_examples.size() == 10);
+  CHECK(r.reoriented_examples[1] == 3);
+  check_adjacency(tr);
+  CHECK(tr.is_valid());
+}
+
+TEST_CASE("a non-convex L-shape and Gmsh's box with a hole build", "[build]") {
+  Tr tr;
+  IO::read_tet_mesh(data_dir + "/l_shape.mesh", tr);
+  check_adjacency(tr);
+  auto s = compute_tet_mesh_statistics(tr, Is_tet_mesh_domain_cell());
+  CHECK(s.cells == 36);
+  CHECK(s.components == 1);
+  CHECK(s.volume == Approx(6.0));
+
+  const auto r = IO::read_tet_mesh(data_dir + "/gmsh_box_with_hole.mesh", tr);
+  check_adjacency(tr);
+  s = compute_tet_mesh_statistics(tr, Is_tet_mesh_domain_cell());
+  CHECK(s.components == 1);
+  CHECK(r.non_manifold_boundary_edges == 0);
+  // A faceted cylinder hole removes a bit less than pi r^2 h.
+  CHECK(s.volume > 1 - 0.04 * M_PI);
+  CHECK(s.volume < 1 - 0.9 * 0.04 * M_PI);
+}
+
+TEST_CASE("two cubes touching along an edge: infinite cells are paired across the outside sectors", "[build]") {
+  Tr tr;
+  const auto r = IO::read_tet_mesh(data_dir + "/two_cubes_sharing_edge.mesh", tr);
+  CHECK(r.non_manifold_boundary_edges == 1);
+  check_adjacency(tr);
+  const auto s = compute_tet_mesh_statistics(tr, Is_tet_mesh_domain_cell());
+  CHECK(s.components == 2);
+  CHECK(s.volume == Approx(2.0));
+  // Around the shared edge: 2 tets of each cube, separated by 2 outside sectors
+  // of 2 infinite cells each. A wrong pairing closes a cycle of 4 on one cube.
+  Tr::Vertex_handle a, b;
+  for (auto v : tr.finite_vertex_handles()) {
+    if (v->point() == Tr::Point(1, 1, 0)) a = v;
+    if (v->point() == Tr::Point(1, 1, 1)) b = v;
+  }
+  REQUIRE(a != Tr::Vertex_handle());
+  REQUIRE(b != Tr::Vertex_handle());
+  Tr::Cell_handle c;
+  int i = 0, j = 0;
+  REQUIRE(tr.is_edge(a, b, c, i, j));
+  auto circ = tr.incident_cells(c, i, j), done = circ;
+  std::size_t n = 0, finite = 0;
+  do {
+    ++n;
+    if (!tr.is_infinite(circ)) ++finite;
+  } while (++circ != done && n < 100);
+  CHECK(n == 8);
+  CHECK(finite == 4);
+}
+
+TEST_CASE("two cubes touching at a vertex build with two components", "[build]") {
+  Tr tr;
+  const auto r = IO::read_tet_mesh(data_dir + "/two_cubes_sharing_vertex.mesh", tr);
+  CHECK(r.non_manifold_boundary_edges == 0);
+  check_adjacency(tr);
+  CHECK(compute_tet_mesh_statistics(tr, Is_tet_mesh_domain_cell()).components == 2);
+}
+
+TEST_CASE("unused vertices are reported and left out", "[build]") {
+  Tr tr;
+  std::vector<Tr::Vertex_handle> vh;
+  const auto r = build_triangulation_from_tets<CGAL::Epick>({{0, 0, 0}, {1, 0, 0}, {5, 5, 5}, {0, 1, 0}, {0, 0, 1}},
+                                                            {{0, 1, 3, 4}}, {}, tr, {}, &vh);
+  CHECK(r.unused_vertices == 1);
+  CHECK(vh[2] == Tr::Vertex_handle());
+  CHECK(vh[4]->info() == 4);
+  CHECK(tr.number_of_vertices() == 4);
+  CHECK(tr.is_valid());
+}
+
+TEST_CASE("degenerate and inconsistent tetrahedra are errors naming the tetrahedron", "[build][bad-input]") {
+  Tr tr;
+  const std::vector<std::array<double, 3>> p{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {1, 1, 1}};
+  auto error = [&](const std::vector<std::array<std::size_t, 4>>& t) -> std::string {
+    Tet_soup_source src;
+    src.file = "in.mesh";
+    for (std::size_t k = 0; k < t.size(); ++k) src.tet_lines.push_back(100 + k);
+    try {
+      build_triangulation_from_tets(p, t, {}, tr, src);
+    } catch (const Input_error& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  CHECK(error({{0, 1, 2, 3}, {0, 1, 2, 4}}) == "in.mesh:101: tetrahedron 2: zero volume (its four vertices are coplanar)");
+  CHECK(error({{0, 1, 2, 2}}) == "in.mesh:100: tetrahedron 1: vertex 3 appears twice");
+  CHECK(error({{0, 1, 2, 9}}) == "in.mesh:100: tetrahedron 1: vertex index 10 is out of range 1..6");
+  CHECK(error({}) == "in.mesh: the mesh has no tetrahedra");
+  CHECK(error({{0, 1, 2, 3}, {0, 2, 1, 3}}) == "in.mesh:101: tetrahedron 2: duplicates tetrahedron 1");
+  // Both on the same side of facet (0,1,2): they overlap.
+  CHECK(error({{0, 1, 2, 3}, {0, 1, 2, 5}}).find("overlaps tetrahedron 1") != std::string::npos);
+  // Three tets on one facet.
+  const std::vector<std::array<double, 3>> q{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, -1}, {0.2, 0.2, 2}};
+  try {
+    build_triangulation_from_tets(q, {{0, 1, 2, 3}, {0, 1, 2, 4}, {0, 1, 2, 5}}, {}, tr);
+    FAIL("no error");
+  } catch (const Input_error& e) {
+    CHECK(std::string(e.what()).find("is shared by 3 tetrahedra") != std::string::npos);
+  }
+  std::vector<std::array<double, 3>> nan_points = p;
+  nan_points[3][2] = std::nan("");
+  CHECK_THROWS_WITH(build_triangulation_from_tets(nan_points, {{0, 1, 2, 3}}, {}, tr),
+                    "vertex 4: coordinate is not finite (NaN or Inf)");
+}
+
+TEST_CASE("write and read back round-trips vertices and tetrahedra", "[build][medit]") {
+  Tr tr;
+  IO::Medit_mesh m;
+  IO::read_tet_mesh(data_dir + "/tetgen_cube.mesh", tr, &m);
+  const auto out = (std::filesystem::temp_directory_path() / "cgal_ext_roundtrip_tetgen.mesh").string();
+  IO::write_medit_mesh(out, m);
+  Tr tr2;
+  IO::Medit_mesh m2;
+  IO::read_tet_mesh(out, tr2, &m2);
+  CHECK(m2.vertices == m.vertices);
+  CHECK(m2.tetrahedra == m.tetrahedra);
+  CHECK(tr2.number_of_finite_cells() == tr.number_of_finite_cells());
+  CHECK(tr2.is_valid());
+}

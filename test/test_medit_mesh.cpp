@@ -1,0 +1,188 @@
+// Reading Medit .mesh files: files written by Gmsh and TetGen, free-format
+// syntax, and every kind of bad input with a message naming file and line.
+#include <CGAL_ext/IO/Medit_mesh.h>
+
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+using CGAL_ext::Input_error;
+using CGAL_ext::IO::Medit_mesh;
+using CGAL_ext::IO::read_medit_mesh;
+using CGAL_ext::IO::write_medit_mesh;
+
+namespace {
+
+const std::string data_dir = CGAL_EXT_TEST_DATA_DIR;
+
+std::string temp_file(const std::string& name, const std::string& content) {
+  const auto dir = std::filesystem::temp_directory_path() / "cgal_ext_test_medit_mesh";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / name).string();
+  std::ofstream(path, std::ios::binary) << content;
+  return path;
+}
+
+// The message of the Input_error thrown by reading `content`.
+Input_error read_error(const std::string& name, const std::string& content) {
+  const std::string path = temp_file(name, content);
+  try {
+    read_medit_mesh(path);
+  } catch (const Input_error& e) {
+    CHECK(e.file() == path);
+    CHECK(std::string(e.what()).find(path) == 0); // the message starts with the file
+    return e;
+  }
+  FAIL("no error for " << name);
+  throw;
+}
+
+const char* one_tet = "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n"
+                      "0 0 0 1\n1 0 0 1\n0 1 0 1\n0 0 1 1\nTetrahedra\n1\n1 2 3 4 7\nEnd\n";
+
+} // namespace
+
+TEST_CASE("a minimal file reads with 0-based indices and references", "[medit]") {
+  const Medit_mesh m = read_medit_mesh(temp_file("one.mesh", one_tet));
+  REQUIRE(m.vertices.size() == 4);
+  REQUIRE(m.tetrahedra.size() == 1);
+  CHECK(m.tetrahedra[0] == std::array<std::size_t, 4>{0, 1, 2, 3});
+  CHECK(m.tetrahedron_references[0] == 7);
+  CHECK(m.vertices[1] == std::array<double, 3>{1, 0, 0});
+  CHECK(m.tetrahedron_lines[0] == 11);
+}
+
+TEST_CASE("free format: comments, case, indentation, values on the next line, skipped sections", "[medit]") {
+  const std::string text = "# written by hand\n  meshversionformatted\n 1\n\n DIMENSION\n   3 # three\n"
+                           "Corners 2\n 1\n 2\nRequiredVertices\n1\n3\n"
+                           "vertices\n4\n  0 0 0 1\n1 0 0 1 # comment after a record\n0 1 0 1\n0 0 1 1\n"
+                           "Ridges\n1\n1\nNormals\n1\n0 0 1\nNormalAtVertices\n1\n1 1\n"
+                           "Triangles\n2\n1 2 3 5\n1 2 4 5\nEdges 1 1 2 9\nTETRAHEDRA\n1\n1 2 3 4 0\n";
+  const Medit_mesh m = read_medit_mesh(temp_file("free.mesh", text));
+  CHECK(m.version == 1);
+  CHECK(m.vertices.size() == 4);
+  CHECK(m.tetrahedra.size() == 1);
+  CHECK(m.triangles.size() == 2);
+  REQUIRE(m.edges.size() == 1);
+  CHECK(m.edge_references[0] == 9);
+}
+
+TEST_CASE("a file written by Gmsh reads", "[medit][gmsh]") {
+  // gmsh -3 box.geo -format mesh: Dimension's value on the next line,
+  // right-aligned columns, Edges and Triangles sections.
+  const Medit_mesh m = read_medit_mesh(data_dir + "/gmsh_box_with_hole.mesh");
+  CHECK(m.vertices.size() == 380);
+  CHECK(m.tetrahedra.size() == 1175);
+  CHECK(m.triangles.size() == 682);
+  CHECK(m.edges.size() == 94);
+}
+
+TEST_CASE("a file written by TetGen -g reads", "[medit][tetgen]") {
+  // tetgen -pq1.5a0.01gfe: comments, Corners, Edges, and interior Triangles.
+  const Medit_mesh m = read_medit_mesh(data_dir + "/tetgen_cube.mesh");
+  CHECK(m.version == 1);
+  CHECK(m.vertices.size() == 201);
+  CHECK(m.tetrahedra.size() == 518);
+  CHECK(m.triangles.size() == 1218); // all faces, interior ones included
+}
+
+TEST_CASE("writing and reading back gives the same mesh", "[medit]") {
+  Medit_mesh m = read_medit_mesh(data_dir + "/gmsh_box_with_hole.mesh");
+  m.vertices[0][0] = 0.1 + 0.2; // not representable in a short decimal
+  const std::string out = temp_file("roundtrip.mesh", "");
+  write_medit_mesh(out, m);
+  const Medit_mesh r = read_medit_mesh(out);
+  CHECK(r.vertices == m.vertices);
+  CHECK(r.vertex_references == m.vertex_references);
+  CHECK(r.tetrahedra == m.tetrahedra);
+  CHECK(r.tetrahedron_references == m.tetrahedron_references);
+  CHECK(r.triangles == m.triangles);
+  CHECK(r.edges == m.edges);
+  CHECK_FALSE(std::filesystem::exists(out + ".tmp-write"));
+}
+
+TEST_CASE("bad files give one clear error naming file and line", "[medit][bad-input]") {
+  SECTION("missing file") {
+    try {
+      read_medit_mesh("/nonexistent/dir/x.mesh");
+      FAIL("no error");
+    } catch (const Input_error& e) {
+      CHECK(std::string(e.what()) == "/nonexistent/dir/x.mesh: cannot open the file for reading");
+    }
+  }
+  SECTION("empty file") { CHECK(read_error("empty.mesh", "  \n\n").problem() == "the file is empty"); }
+  SECTION("garbage") {
+    const Input_error e = read_error("garbage.mesh", "\x7f" "ELF\x02\x01 binary junk\n");
+    CHECK(e.line() == 1);
+    CHECK(e.problem().find("unknown keyword") != std::string::npos);
+  }
+  SECTION("truncated vertex section") {
+    const Input_error e = read_error("trunc.mesh", "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 1\n1 0 0 1\n0 1");
+    CHECK(e.problem().find("the rest of the file") != std::string::npos);
+  }
+  SECTION("truncated inside a record") {
+    const Input_error e = read_error("trunc2.mesh", "Dimension 3\nVertices\n2\n0 0 0 1\n1 0 0 1\nTetrahedra\n1\n1 2 3\n");
+    CHECK(e.problem() == "unexpected end of file: expected a vertex index (truncated file?)");
+  }
+  SECTION("counts that do not match the records") {
+    const Input_error e = read_error("count.mesh", "Dimension 3\nVertices\n5\n0 0 0 1\n1 0 0 1\n0 1 0 1\n0 0 1 1\n"
+                                                   "Tetrahedra\n1\n1 2 3 4 1\nEnd\n");
+    CHECK(e.line() == 8);
+    CHECK(e.element() == "vertex 5");
+    CHECK(e.problem().find("'Tetrahedra'") != std::string::npos);
+  }
+  SECTION("more records than the count") {
+    const Input_error e = read_error("count2.mesh", "Dimension 3\nVertices\n3\n0 0 0 1\n1 0 0 1\n0 1 0 1\n0 0 1 1\n"
+                                                    "Tetrahedra\n1\n1 2 3 4 1\nEnd\n");
+    CHECK(e.line() == 7);
+    CHECK(e.problem().find("a count does not match") != std::string::npos);
+  }
+  SECTION("absurd count is not allocated") {
+    const Input_error e = read_error("absurd.mesh", "Dimension 3\nVertices\n1000000000000\n0 0 0 1\n");
+    CHECK(e.line() == 3);
+    CHECK(e.problem().find("more than the rest of the file can hold") != std::string::npos);
+  }
+  SECTION("negative count") {
+    CHECK(read_error("neg.mesh", "Dimension 3\nVertices\n-4\n").problem().find("negative") != std::string::npos);
+  }
+  SECTION("zero index") {
+    const Input_error e = read_error("zero.mesh", "Dimension 3\nVertices\n4\n0 0 0 1\n1 0 0 1\n0 1 0 1\n0 0 1 1\n"
+                                                  "Tetrahedra\n1\n0 2 3 4 1\n");
+    CHECK(e.line() == 10);
+    CHECK(e.element() == "tetrahedron 1");
+    CHECK(e.problem().find("1-based") != std::string::npos);
+  }
+  SECTION("index out of range") {
+    const Input_error e = read_error("range.mesh", "Dimension 3\nVertices\n4\n0 0 0 1\n1 0 0 1\n0 1 0 1\n0 0 1 1\n"
+                                                   "Tetrahedra\n2\n1 2 3 4 1\n1 2 3 5 1\n");
+    CHECK(e.line() == 11);
+    CHECK(e.element() == "tetrahedron 2");
+    CHECK(e.problem() == "vertex index 5 is out of range 1..4 (4 vertices in the file)");
+  }
+  SECTION("NaN coordinate") {
+    const Input_error e = read_error("nan.mesh", "Dimension 3\nVertices\n4\n0 0 0 1\n1 nan 0 1\n0 1 0 1\n0 0 1 1\n");
+    CHECK(e.line() == 5);
+    CHECK(e.element() == "vertex 2");
+    CHECK(e.problem().find("not finite") != std::string::npos);
+  }
+  SECTION("Inf coordinate and overflow") {
+    CHECK(read_error("inf.mesh", "Dimension 3\nVertices\n1\n0 -inf 0 1\n").problem().find("not finite") != std::string::npos);
+    CHECK(read_error("ovf.mesh", "Dimension 3\nVertices\n1\n0 1e999 0 1\n").problem().find("overflows") != std::string::npos);
+  }
+  SECTION("a 2D mesh") {
+    const Input_error e = read_error("2d.mesh", "MeshVersionFormatted 2\nDimension 2\nVertices\n3\n0 0 1\n1 0 1\n0 1 1\n");
+    CHECK(e.line() == 2);
+    CHECK(e.problem().find("Dimension 2") != std::string::npos);
+  }
+  SECTION("a surface mesh without tetrahedra") {
+    const Input_error e = read_error("surf.mesh", "Dimension 3\nVertices\n3\n0 0 0 1\n1 0 0 1\n0 1 0 1\nTriangles\n1\n1 2 3 1\nEnd\n");
+    CHECK(e.problem().find("no Tetrahedra section") != std::string::npos);
+  }
+  SECTION("non-integer index") {
+    const Input_error e = read_error("float.mesh", "Dimension 3\nVertices\n4\n0 0 0 1\n1 0 0 1\n0 1 0 1\n0 0 1 1\n"
+                                                   "Tetrahedra\n1\n1 2.5 3 4 1\n");
+    CHECK(e.problem() == "expected a vertex index, found '2.5'");
+  }
+}
