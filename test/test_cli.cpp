@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -14,7 +15,16 @@
 namespace {
 
 const std::string data_dir = CGAL_EXT_TEST_DATA_DIR;
-const std::filesystem::path work = std::filesystem::temp_directory_path() / "cgal_ext_test_cli";
+// CTest runs the test cases of this file as parallel processes: each process
+// gets its own scratch directory so that their outputs never mix.
+const std::filesystem::path work =
+    std::filesystem::temp_directory_path() / ("cgal_ext_test_cli_" + std::to_string(::getpid()));
+struct Remove_work_at_exit {
+  ~Remove_work_at_exit() {
+    std::error_code ec;
+    std::filesystem::remove_all(work, ec);
+  }
+} remove_work_at_exit;
 
 struct Run {
   int exit_code; // -1 if killed by a signal
