@@ -138,3 +138,64 @@ TEST_CASE("bad input: one error line naming the file and the line, exit code 1, 
   CHECK(missing.exit_code == 1);
   CHECK(missing.err.find("does_not_exist.mesh: cannot open the file for reading") != std::string::npos);
 }
+
+TEST_CASE("walk prints one JSON line per segment, in order, with exact simplices", "[cli][walk]") {
+  const std::string mesh = data_dir + "/cube_kuhn_2.mesh";
+  // Line 2: along the x axis through the cube centre, starting and ending outside.
+  // Line 4: the main diagonal, from vertex to vertex through the centre.
+  const std::string segments = file_with("segments.txt", "# q -> p\n-1 1 1 3 1 1\n\n0 0 0 2 2 2\n");
+  const Run r = run("walk " + mesh + " --segments " + segments);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out ==
+        "{\"segment\": 0, \"pieces\": [{\"dim\": -1, \"vertices\": [], \"t\": [0, 0.25]}, "
+        "{\"dim\": 0, \"vertices\": [4], \"t\": [0.25, 0.25]}, {\"dim\": 1, \"vertices\": [4, 13], \"t\": [0.25, 0.5]}, "
+        "{\"dim\": 0, \"vertices\": [13], \"t\": [0.5, 0.5]}, {\"dim\": 1, \"vertices\": [13, 22], \"t\": [0.5, 0.75]}, "
+        "{\"dim\": 0, \"vertices\": [22], \"t\": [0.75, 0.75]}, {\"dim\": -1, \"vertices\": [], \"t\": [0.75, 1]}]}\n"
+        "{\"segment\": 1, \"pieces\": [{\"dim\": 0, \"vertices\": [0], \"t\": [0, 0]}, "
+        "{\"dim\": 1, \"vertices\": [0, 13], \"t\": [0, 0.5]}, {\"dim\": 0, \"vertices\": [13], \"t\": [0.5, 0.5]}, "
+        "{\"dim\": 1, \"vertices\": [13, 26], \"t\": [0.5, 1]}, {\"dim\": 0, \"vertices\": [26], \"t\": [1, 1]}]}\n");
+  CHECK(r.err.find("[summary] 2 segments, 12 pieces") != std::string::npos);
+
+  const Run f = run("walk " + mesh + " --segments " + segments + " --fast");
+  REQUIRE(f.exit_code == 0);
+  CHECK(f.out ==
+        "{\"segment\": 0, \"pieces\": [{\"dim\": -1, \"vertices\": [], \"t\": [0, 0.25]}, "
+        "{\"dim\": 1, \"vertices\": [4, 13], \"t\": [0.25, 0.5]}, {\"dim\": 1, \"vertices\": [13, 22], \"t\": [0.5, 0.75]}, "
+        "{\"dim\": -1, \"vertices\": [], \"t\": [0.75, 1]}]}\n"
+        "{\"segment\": 1, \"pieces\": [{\"dim\": 1, \"vertices\": [0, 13], \"t\": [0, 0.5]}, "
+        "{\"dim\": 1, \"vertices\": [13, 26], \"t\": [0.5, 1]}]}\n");
+
+  // A segment inside one tet: one cell piece covering [0, 1].
+  const std::string inside = file_with("inside.txt", "0.1 0.05 0.02 0.2 0.1 0.05\n");
+  const Run c = run("walk " + mesh + " --segments " + inside);
+  REQUIRE(c.exit_code == 0);
+  CHECK(c.out.find("{\"segment\": 0, \"pieces\": [{\"dim\": 3, \"vertices\": [") == 0);
+  CHECK(c.out.find("\"t\": [0, 1]}]}\n") != std::string::npos);
+}
+
+TEST_CASE("walk: a malformed segment line is an error naming the file and the line", "[cli][walk][bad-input]") {
+  const std::string mesh = data_dir + "/cube_kuhn_2.mesh";
+  struct Case {
+    const char* content;
+    const char* expected;
+  };
+  const Case cases[] = {
+      {"0 0 0 1 1 1\n\n1 2 3 4 5\n", ":3: expected 6 numbers (ax ay az bx by bz), found 5"},
+      {"0 0 0 1 1 1 1\n", ":1: more than 6 numbers on the line"},
+      {"0 0 0 1 1 nan\n", ":1: 'nan' is not a finite number"},
+      {"0 0 0 1 one 1\n", ":1: 'one' is not a finite number"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.content);
+    const std::string path = file_with("bad_segments.txt", c.content);
+    const Run r = run("walk " + mesh + " --segments " + path);
+    CHECK(r.exit_code == 1);
+    CHECK(r.out.empty()); // the whole file is read before any output
+    CHECK(r.err.find("metric-frames walk: error: " + path + c.expected) != std::string::npos);
+  }
+  CHECK(run("walk " + mesh).exit_code == 2);                                   // no --segments
+  CHECK(run("walk --segments " + file_with("one.txt", "0 0 0 1 1 1\n")).exit_code == 2); // no MESH
+  const Run missing = run("walk " + mesh + " --segments " + (work / "none.txt").string());
+  CHECK(missing.exit_code == 1);
+  CHECK(missing.err.find("none.txt: cannot open the file for reading") != std::string::npos);
+}

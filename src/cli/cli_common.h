@@ -23,7 +23,9 @@ struct Usage_error : std::runtime_error {
 };
 
 /// Minimal parser: `--name VALUE` options, `--flag` flags and positionals, in any order.
-/// Every argument must be consumed; finish() rejects the rest.
+/// Every argument must be consumed; finish() rejects the rest. Ask for the
+/// options and flags before the positionals, so that an option's value is
+/// never taken for a positional.
 class Arguments {
 public:
   Arguments(std::vector<std::string> args, std::string command, const char* help)

@@ -1,0 +1,189 @@
+// Benchmark of the exact segment walk against CGAL's segment traverser, on
+// the Delaunay triangulation of N uniform random points in the unit cube.
+//
+// usage: benchmark_segment_walk [N = 100000] [segments per class = 2000] [seed = 1]
+//
+// For three classes of random segments (short: half the mean vertex
+// spacing; medium: about 10 cells; long: across the cube), it measures in one
+// run the cells per second of Segment_walk_3::fast, of the full output
+// Segment_walk_3::operator(), and of Triangulation_3::segment_traverser_cell_handles.
+// Cells are the finite cells reported (CGAL's traverser also reports the
+// infinite cells it crosses, which are not counted); the cell sequences of
+// both walks are compared, outside the timings, in the last column.
+// All three get the same hint (the cell containing q, located beforehand and
+// not timed), single-threaded. The three are run in 5 interleaved rounds and
+// the best thread CPU time of each is kept.
+#include <CGAL_ext/Segment_walk_3.h>
+
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <iterator>
+#include <random>
+#include <string>
+#include <vector>
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using DT = CGAL::Delaunay_triangulation_3<K>;
+using Point = DT::Point;
+using Walk = CGAL_ext::Segment_walk_3<DT>;
+using Piece = CGAL_ext::Segment_walk_piece_3<DT>;
+
+namespace {
+
+struct Segment {
+  Point q, p;
+  DT::Cell_handle hint;
+};
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// CPU time of this thread: less sensitive than wall time to other processes
+// sharing the machine.
+double thread_seconds() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+// Runs the three measured functions in interleaved rounds (so that a load
+// change on the machine affects them alike) and keeps the best time of each.
+// Each function returns the number of cells it reported.
+template <class F0, class F1, class F2>
+void interleaved(int rounds, F0 f0, F1 f1, F2 f2, double (&best)[3], std::size_t (&cells)[3]) {
+  for (int i = 0; i < 3; ++i) best[i] = 1e300;
+  for (int r = 0; r < rounds; ++r) {
+    double t = thread_seconds();
+    cells[0] = f0();
+    best[0] = std::min(best[0], thread_seconds() - t);
+    t = thread_seconds();
+    cells[1] = f1();
+    best[1] = std::min(best[1], thread_seconds() - t);
+    t = thread_seconds();
+    cells[2] = f2();
+    best[2] = std::min(best[2], thread_seconds() - t);
+  }
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  const std::size_t n = argc > 1 ? std::strtoul(argv[1], nullptr, 10) : 100000;
+  const std::size_t per_class = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 2000;
+  const unsigned seed = argc > 3 ? unsigned(std::strtoul(argv[3], nullptr, 10)) : 1u;
+  if (n < 10 || per_class < 1) {
+    std::fprintf(stderr, "usage: %s [N >= 10] [segments per class >= 1] [seed]\n", argv[0]);
+    return 2;
+  }
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Point> pts;
+  pts.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
+  auto t0 = std::chrono::steady_clock::now();
+  DT dt(pts.begin(), pts.end());
+  std::printf("Delaunay of %zu uniform random points in the unit cube (seed %u): %zu finite cells, built in %.2f s\n", n, seed,
+              dt.number_of_finite_cells(), seconds_since(t0));
+
+  const double spacing = std::cbrt(1.0 / double(n));
+  struct Class {
+    std::string name;
+    double length; // < 0: across the cube
+  };
+  const Class classes[] = {{"short (0.5 h)", 0.5 * spacing}, {"medium (~10 cells)", 2.4 * spacing}, {"long (across)", -1}};
+
+  t0 = std::chrono::steady_clock::now();
+  const Walk walk(dt);
+  std::printf("walker constructed in %.3f s; %zu segments per class, best of 5 interleaved rounds (thread CPU time), single thread\n\n",
+              seconds_since(t0), per_class);
+  std::printf("%-20s %9s %13s %13s %13s %13s %10s %10s %9s\n", "class", "segments", "cells/seg", "fast Mc/s",
+              "full Mc/s", "CGAL Mc/s", "fast/CGAL", "full/CGAL", "mismatch");
+
+  const double lo = 0.05, hi = 0.95; // endpoints well inside the convex hull
+  std::uniform_real_distribution<double> in(lo, hi);
+  for (const Class& cl : classes) {
+    std::vector<Segment> segs;
+    while (segs.size() < per_class) {
+      Point q(in(rng), in(rng), in(rng)), p;
+      if (cl.length < 0) {
+        // from near one face of the cube to near the opposite one
+        const int axis = int(segs.size() % 3);
+        double a[3] = {in(rng), in(rng), in(rng)}, b[3] = {in(rng), in(rng), in(rng)};
+        a[axis] = lo;
+        b[axis] = hi;
+        q = Point(a[0], a[1], a[2]);
+        p = Point(b[0], b[1], b[2]);
+      } else {
+        // random direction
+        double d[3], len2 = 0;
+        do {
+          len2 = 0;
+          for (double& x : d) {
+            x = 2 * u(rng) - 1;
+            len2 += x * x;
+          }
+        } while (len2 > 1 || len2 < 1e-4);
+        const double s = cl.length / std::sqrt(len2);
+        p = Point(q.x() + s * d[0], q.y() + s * d[1], q.z() + s * d[2]);
+        if (p.x() < lo || p.x() > hi || p.y() < lo || p.y() > hi || p.z() < lo || p.z() > hi) continue;
+      }
+      segs.push_back({q, p, dt.locate(q)});
+    }
+
+    std::vector<Piece> pieces;
+    pieces.reserve(1024);
+    double best[3];
+    std::size_t cells[3];
+    interleaved(
+        5,
+        [&] {
+          std::size_t n_cells = 0;
+          for (const Segment& s : segs) {
+            pieces.clear();
+            walk.fast(s.q, s.p, std::back_inserter(pieces), s.hint);
+            for (const Piece& x : pieces) n_cells += x.dimension == 3;
+          }
+          return n_cells;
+        },
+        [&] {
+          std::size_t n_cells = 0;
+          for (const Segment& s : segs) {
+            pieces.clear();
+            walk(s.q, s.p, std::back_inserter(pieces), s.hint);
+            for (const Piece& x : pieces) n_cells += x.dimension == 3;
+          }
+          return n_cells;
+        },
+        [&] {
+          std::size_t n_cells = 0;
+          for (const Segment& s : segs)
+            for (DT::Cell_handle c : dt.segment_traverser_cell_handles(s.q, s.p, s.hint)) n_cells += !dt.is_infinite(c);
+          return n_cells;
+        },
+        best, cells);
+    // Cell sequences must agree on these generic segments (checked outside the timings).
+    std::size_t mismatches = 0;
+    for (const Segment& s : segs) {
+      pieces.clear();
+      walk.fast(s.q, s.p, std::back_inserter(pieces), s.hint);
+      std::vector<DT::Cell_handle> a, b;
+      for (const Piece& x : pieces)
+        if (x.dimension == 3) a.push_back(x.cell);
+      for (DT::Cell_handle c : dt.segment_traverser_cell_handles(s.q, s.p, s.hint))
+        if (!dt.is_infinite(c)) b.push_back(c);
+      mismatches += a != b;
+    }
+    const double rf = cells[0] / best[0] / 1e6, rl = cells[1] / best[1] / 1e6, rc = cells[2] / best[2] / 1e6;
+    std::printf("%-20s %9zu %13.2f %13.2f %13.2f %13.2f %10.2f %10.2f %9zu\n", cl.name.c_str(), segs.size(),
+                double(cells[0]) / segs.size(), rf, rl, rc, rf / rc, rl / rc, mismatches);
+  }
+  return 0;
+}

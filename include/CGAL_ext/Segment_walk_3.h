@@ -1,0 +1,1076 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_EXT_SEGMENT_WALK_3_H
+#define CGAL_EXT_SEGMENT_WALK_3_H
+
+/// \file Segment_walk_3.h
+/// The exact walk of a segment through a tetrahedral domain: every simplex
+/// whose relative interior meets the segment, in order, with the parameter
+/// interval of each piece, and the gaps outside the domain.
+
+#include <CGAL_ext/Tet_mesh_triangulation_3.h>
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_rational.h>
+#include <CGAL/Simple_cartesian.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace CGAL_ext {
+
+/// \ingroup PkgCGALExtWalk
+/// One piece of the output of `Segment_walk_3`: a simplex of the domain (or a
+/// gap outside it) and the parameter interval where the segment
+/// \f$x(t) = q + t (p - q)\f$ lies in its relative interior.
+///
+/// \tparam Triangulation a CGAL `Triangulation_3`
+template <class Triangulation>
+struct Segment_walk_piece_3 {
+  /// -1 for a gap outside the domain, 0 vertex, 1 edge, 2 facet, 3 cell.
+  int dimension = -1;
+  /// The first `dimension + 1` entries are the vertices of the simplex (in no
+  /// particular order); the others are default-constructed.
+  std::array<typename Triangulation::Vertex_handle, 4> vertices{};
+  /// A domain cell incident to the simplex (the cell itself for dimension 3);
+  /// default-constructed for a gap.
+  typename Triangulation::Cell_handle cell{};
+  /// Start of the parameter interval.
+  double t_in = 0;
+  /// End of the parameter interval (`t_in == t_out` for a transversal crossing).
+  double t_out = 0;
+};
+
+namespace internal {
+
+// Vertex indices of facet i of a positively oriented cell, ordered so that
+// orientation(facet, vertex i) is positive (the cell is on the positive side).
+inline constexpr std::array<int, 3> walk_inner_facet_table[4] = {{2, 1, 3}, {2, 3, 0}, {0, 3, 1}, {0, 1, 2}};
+inline const std::array<int, 3>& walk_inner_facet(int i) { return walk_inner_facet_table[i]; }
+inline int walk_popcount(unsigned m) { return int(m & 1u) + int((m >> 1) & 1u) + int((m >> 2) & 1u) + int((m >> 3) & 1u); }
+
+} // namespace internal
+
+/// \ingroup PkgCGALExtWalk
+/// Exact walk of a segment \f$[q, p]\f$ through the domain of a 3D triangulation.
+///
+/// The domain is the union of the cells for which the domain predicate is
+/// true. A simplex (vertex, edge, facet, cell) is considered if it is a face
+/// of at least one domain cell. `operator()` reports, in order along the
+/// segment, every such simplex whose relative interior meets the closed
+/// segment, with its parameter interval on \f$x(t) = q + t (p - q)\f$, and
+/// the maximal parts of \f$[0, 1]\f$ outside the closed domain as gaps
+/// (dimension -1). The intervals tile \f$[0, 1]\f$: the first starts at 0,
+/// each one starts at the (same double) end of the previous one, and the last
+/// ends at 1. A transversal crossing of a facet, an edge or a vertex is a
+/// piece with `t_in == t_out`.
+///
+/// Every combinatorial decision (which simplex, which side, where the walk
+/// re-enters the domain) is taken with exact predicates (orientations of the
+/// input points and mesh vertices, and exact rational arithmetic for the
+/// rare re-entry search); the reported parameters are computed in double and
+/// forced to be non-decreasing. When the kernel's number type is `double`,
+/// orientation tests first go through an inlined semi-static filter (the
+/// expression shape and error bound of CGAL's own static filter of
+/// `Orientation_3`, with a safety factor of 2) and call the traits'
+/// `Orientation_3` whenever the filter cannot certify the sign, so the
+/// decisions are those of the exact predicate; define
+/// `CGAL_EXT_WALK_NO_STATIC_FILTER` to always call the traits' predicate.
+///
+/// A generic step costs two orientation predicates (the classic straight
+/// walk) plus one to test whether \f$p\f$ was reached; degenerate
+/// configurations (the segment through a vertex, along an edge, in a facet
+/// plane) are detected when a predicate returns zero and handled by an exact
+/// general step over the star of the current simplex.
+///
+/// Infinite cells are never used geometrically, so the walk is valid on a
+/// `Tet_mesh_triangulation_3` of a non-convex domain, with several
+/// components, even touching along an edge or at a vertex. The re-entry
+/// after a gap is found with an AABB tree over the boundary facets, built
+/// lazily (once, thread-safely) on the first gap. Point location uses the
+/// hint, or a coarse grid of cells built lazily, then a visibility walk, and
+/// falls back on an exact segment walk from a vertex if the visibility walk
+/// meets the boundary.
+///
+/// The walker does not modify the triangulation: several threads may walk
+/// with the same walker concurrently. The triangulation must not change
+/// while a walker is in use.
+///
+/// \tparam Triangulation a CGAL `Triangulation_3` (or `Delaunay_triangulation_3`,
+///         or `Tet_mesh_triangulation_3`) whose geometric traits are a CGAL
+///         kernel with double coordinates and exact predicates (e.g.
+///         `Exact_predicates_inexact_constructions_kernel`); its finite cells
+///         must be positively oriented.
+/// \tparam Domain_predicate a unary predicate on `Cell_handle`, true for the
+///         domain cells. Infinite cells are never in the domain.
+template <class Triangulation, class Domain_predicate = Is_finite_cell<Triangulation>>
+class Segment_walk_3 {
+public:
+  /// The triangulation type.
+  using Tr = Triangulation;
+  /// The point type.
+  using Point = typename Tr::Point;
+  /// Cell handle type.
+  using Cell_handle = typename Tr::Cell_handle;
+  /// Vertex handle type.
+  using Vertex_handle = typename Tr::Vertex_handle;
+  /// The output piece type.
+  using Piece = Segment_walk_piece_3<Tr>;
+  /// The geometric traits (a CGAL kernel).
+  using Kernel = typename Tr::Geom_traits;
+
+  /// \param tr the triangulation; it must outlive the walker and not change
+  /// \param in_domain the domain predicate
+  /// \throws std::invalid_argument if `tr.dimension() < 3`
+  Segment_walk_3(const Tr& tr, Domain_predicate in_domain)
+      : tr_(&tr), in_domain_(std::move(in_domain)), shared_(std::make_shared<Shared>()),
+        orient_(tr.geom_traits().orientation_3_object()),
+        coplanar_orient_(tr.geom_traits().coplanar_orientation_3_object()),
+        strictly_ordered_(tr.geom_traits().collinear_are_strictly_ordered_along_line_3_object()) {
+    if (tr.dimension() < 3)
+      throw std::invalid_argument("Segment_walk_3: the triangulation has dimension " + std::to_string(tr.dimension()) +
+                                  "; the walk needs a 3-dimensional triangulation (at least 4 non-coplanar points)");
+    // Every simplex is reported at most once and every star is searched at
+    // most once per simplex: this bound is never reached on a valid input.
+    max_steps_ = 64 * (tr.number_of_cells() + 4) + 1024;
+  }
+
+  /// Walker whose domain is every finite cell (only for `Is_finite_cell`).
+  /// \tparam D the domain predicate (deduced; must be `Is_finite_cell<Tr>`)
+  /// \param tr the triangulation
+  template <class D = Domain_predicate,
+            std::enable_if_t<std::is_same<D, Is_finite_cell<Triangulation>>::value, int> = 0>
+  explicit Segment_walk_3(const Tr& tr) : Segment_walk_3(tr, Is_finite_cell<Tr>(tr)) {}
+
+  /// Full output: every simplex whose relative interior meets \f$[q, p]\f$,
+  /// in order, with gaps; see the class description.
+  /// \tparam OutputIterator accepts `Piece`
+  /// \param q the start point
+  /// \param p the end point
+  /// \param out receives the pieces
+  /// \returns the output iterator past the last piece
+  /// \throws std::invalid_argument if a coordinate is not finite
+  template <class OutputIterator>
+  OutputIterator operator()(const Point& q, const Point& p, OutputIterator out) const {
+    return run<true>(q, p, out, Cell_handle());
+  }
+
+  /// Full output, with a hint for locating `q`.
+  /// \tparam OutputIterator accepts `Piece`
+  /// \param q the start point
+  /// \param p the end point
+  /// \param out receives the pieces
+  /// \param hint a cell near `q` (ignored if null or not a domain cell)
+  /// \returns the output iterator past the last piece
+  template <class OutputIterator>
+  OutputIterator operator()(const Point& q, const Point& p, OutputIterator out, Cell_handle hint) const {
+    return run<true>(q, p, out, hint);
+  }
+
+  /// Fast mode: only the pieces of positive length (cells, edges and facets
+  /// the segment runs along or through, and gaps), in order. These are the
+  /// pieces of the full output without its zero-length pieces, so
+  /// consecutive pieces are adjacent in t. "Positive length" is exact: a
+  /// piece of tiny positive length may still have `t_in == t_out` in double.
+  /// Consecutive gaps (separated by a point where the segment only touches
+  /// the domain) are not merged. If `q == p` the one piece of the full
+  /// output (of zero length) is reported.
+  /// \tparam OutputIterator accepts `Piece`
+  /// \param q the start point
+  /// \param p the end point
+  /// \param out receives the pieces
+  /// \returns the output iterator past the last piece
+  template <class OutputIterator>
+  OutputIterator fast(const Point& q, const Point& p, OutputIterator out) const {
+    return run<false>(q, p, out, Cell_handle());
+  }
+
+  /// Fast mode, with a hint for locating `q`.
+  /// \tparam OutputIterator accepts `Piece`
+  /// \param q the start point
+  /// \param p the end point
+  /// \param out receives the pieces
+  /// \param hint a cell near `q` (ignored if null or not a domain cell)
+  /// \returns the output iterator past the last piece
+  template <class OutputIterator>
+  OutputIterator fast(const Point& q, const Point& p, OutputIterator out, Cell_handle hint) const {
+    return run<false>(q, p, out, hint);
+  }
+
+  /// Exact point location: the lowest-dimensional domain simplex containing
+  /// `x`, as a piece with `t_in == t_out == 0`, or a gap (dimension -1) if
+  /// `x` is outside the closed domain.
+  /// \param x the point
+  /// \param hint a cell near `x` (ignored if null or not a domain cell)
+  /// \throws std::invalid_argument if a coordinate is not finite
+  Piece locate(const Point& x, Cell_handle hint = Cell_handle()) const {
+    check_finite(x, "locate");
+    return make_piece(locate_simplex(x, hint), 0.0, 0.0);
+  }
+
+  /// Whether `c` is a cell of the domain (finite and accepted by the predicate).
+  /// \param c the cell
+  bool is_domain_cell(Cell_handle c) const {
+    if (c == Cell_handle() || tr_->is_infinite(c)) return false;
+    if (std::is_same<Domain_predicate, Is_finite_cell<Tr>>::value) return true; // already decided
+    return in_domain_(c);
+  }
+
+private:
+  using EK = CGAL::Simple_cartesian<CGAL::Exact_rational>;
+  using EFT = EK::FT;
+  using EPoint = EK::Point_3;
+  using EVector = EK::Vector_3;
+  using Triangle = typename Kernel::Triangle_3;
+  using Tri_iterator = typename std::vector<Triangle>::const_iterator;
+  using Primitive = CGAL::AABB_triangle_primitive<Kernel, Tri_iterator>;
+  using AABB = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+
+  // A face of cell c: the vertices of c whose bit is set in mask (mask 0: none / outside).
+  struct Simplex {
+    Cell_handle c;
+    unsigned mask = 0;
+    bool valid() const { return mask != 0; }
+    int dimension() const { return internal::walk_popcount(mask) - 1; }
+  };
+
+  // Data built lazily, shared by the copies of a walker.
+  struct Shared {
+    std::once_flag boundary_once, grid_once;
+    // boundary facets of the domain: the domain cell and the facet index
+    std::vector<Triangle> triangles;
+    std::vector<std::pair<Cell_handle, int>> triangle_facets;
+    std::unique_ptr<AABB> tree;
+    // for boundary vertices whose star of cells is not connected through the
+    // TDS (domains touching at a vertex): one domain cell per component
+    std::unordered_map<const void*, std::vector<Cell_handle>> vertex_seeds;
+    // coarse grid of domain cells, for the start of point location
+    std::array<double, 3> lo{}, step{};
+    std::array<int, 3> n{};
+    std::vector<Cell_handle> grid;
+    Cell_handle any_domain_cell;
+  };
+
+  // Per-call state.
+  struct Ctx {
+    Point q, p;
+    double qx, qy, qz, dx, dy, dz, dd;
+    std::size_t steps = 0;
+    std::size_t max_steps;
+    // gap search: candidates sorted by the exact parameter of their first point
+    bool candidates_ready = false;
+    std::vector<std::pair<EFT, std::size_t>> candidates;
+    // star enumeration
+    std::vector<Cell_handle> visited, stack;
+    Ctx(const Point& q_, const Point& p_, std::size_t ms) : q(q_), p(p_), max_steps(ms) {
+      qx = CGAL::to_double(q.x()); qy = CGAL::to_double(q.y()); qz = CGAL::to_double(q.z());
+      dx = CGAL::to_double(p.x()) - qx; dy = CGAL::to_double(p.y()) - qy; dz = CGAL::to_double(p.z()) - qz;
+      dd = dx * dx + dy * dy + dz * dz;
+    }
+    void tick() {
+      if (++steps > max_steps) {
+        std::ostringstream os;
+        os.precision(17);
+        os << "Segment_walk_3: step bound exceeded on the segment (" << q << ") -> (" << p
+           << "); the triangulation is probably not valid";
+        throw std::logic_error(os.str());
+      }
+    }
+  };
+
+  // How a traversal ended: at p, or at a point of a face, from which the walk goes on.
+  struct Next {
+    bool done = true;
+    Simplex s;
+    double t = 1;
+    bool crossed = false; // s is facet (s.c, k) crossed transversally out of s.c
+  };
+
+  // ---------------------------------------------------------------- output
+  template <bool Full, class OutputIterator>
+  struct Sink {
+    const Segment_walk_3* w;
+    OutputIterator out;
+    // zero: a structural zero-length piece (crossing, hit vertex, end point)
+    void operator()(const Simplex& s, double a, double b, bool zero) {
+      if (!Full && zero) return;
+      *out++ = w->make_piece(s, a, b);
+    }
+  };
+  struct Last_sink {
+    Simplex last;
+    void operator()(const Simplex& s, double, double, bool) { last = s; }
+  };
+
+  Piece make_piece(const Simplex& s, double a, double b) const {
+    Piece r;
+    r.t_in = a;
+    r.t_out = b;
+    if (!s.valid()) return r;
+    r.cell = s.c;
+    int k = 0;
+    for (int i = 0; i < 4; ++i)
+      if (s.mask & (1u << i)) r.vertices[k++] = s.c->vertex(i);
+    r.dimension = k - 1;
+    return r;
+  }
+
+  static void check_finite(const Point& x, const char* what) {
+    const double c[3] = {CGAL::to_double(x.x()), CGAL::to_double(x.y()), CGAL::to_double(x.z())};
+    for (double v : c)
+      if (!std::isfinite(v)) {
+        std::ostringstream os;
+        os << "Segment_walk_3::" << what << ": the point (" << c[0] << ", " << c[1] << ", " << c[2]
+           << ") has a coordinate that is not finite";
+        throw std::invalid_argument(os.str());
+      }
+  }
+
+  template <bool Full, class OutputIterator>
+  OutputIterator run(const Point& q, const Point& p, OutputIterator out, Cell_handle hint) const {
+    check_finite(q, Full ? "operator()" : "fast");
+    check_finite(p, Full ? "operator()" : "fast");
+    Sink<Full, OutputIterator> sink{this, out};
+    const Simplex start = locate_simplex(q, hint);
+    if (q == p) {
+      *sink.out++ = make_piece(start, 0.0, 1.0);
+      return sink.out;
+    }
+    walk(q, p, start, sink);
+    return sink.out;
+  }
+
+  // ------------------------------------------------------------ predicates
+  const Point& pt(Cell_handle c, int i) const { return c->vertex(i)->point(); }
+
+  // Orientation of cell c with vertex i replaced by x: positive iff x is
+  // strictly on the same side of facet i as vertex i.
+  CGAL::Orientation orient_x(Cell_handle c, int i, const Point& x) const {
+    switch (i) {
+    case 0: return orient4(x, pt(c, 1), pt(c, 2), pt(c, 3));
+    case 1: return orient4(pt(c, 0), x, pt(c, 2), pt(c, 3));
+    case 2: return orient4(pt(c, 0), pt(c, 1), x, pt(c, 3));
+    default: return orient4(pt(c, 0), pt(c, 1), pt(c, 2), x);
+    }
+  }
+  // orientation(a, b, c, d) of the traits, behind an inlined semi-static filter.
+  CGAL::Orientation orient4(const Point& a, const Point& b, const Point& c, const Point& d) const {
+    if (double_coordinates) {
+      const double ax = CGAL::to_double(a.x()), ay = CGAL::to_double(a.y()), az = CGAL::to_double(a.z());
+      double ba[3], ca[3], da[3];
+      diff(b, ax, ay, az, ba);
+      diff(c, ax, ay, az, ca);
+      diff(d, ax, ay, az, da);
+      const int s = filtered_det_sign(ba, ca, da);
+      if (s != 2) return CGAL::Orientation(s);
+    }
+    return orient_(a, b, c, d);
+  }
+
+  // --------------------------------------------------------- t in double
+  double t_vertex(const Ctx& x, const Point& v) const {
+    const double wx = CGAL::to_double(v.x()) - x.qx, wy = CGAL::to_double(v.y()) - x.qy, wz = CGAL::to_double(v.z()) - x.qz;
+    return (wx * x.dx + wy * x.dy + wz * x.dz) / x.dd;
+  }
+  double t_edge(const Ctx& x, const Point& a, const Point& b) const {
+    const double ax = CGAL::to_double(a.x()), ay = CGAL::to_double(a.y()), az = CGAL::to_double(a.z());
+    const double ex = CGAL::to_double(b.x()) - ax, ey = CGAL::to_double(b.y()) - ay, ez = CGAL::to_double(b.z()) - az;
+    const double wx = ax - x.qx, wy = ay - x.qy, wz = az - x.qz;
+    // The lines meet: q + t D = a + s e, so t (D x e) = (a - q) x e. Cross
+    // products keep the precision when the lines are nearly parallel (the
+    // normal-equation form loses it quadratically).
+    const double cx = x.dy * ez - x.dz * ey, cy = x.dz * ex - x.dx * ez, cz = x.dx * ey - x.dy * ex;
+    const double wx_ = wy * ez - wz * ey, wy_ = wz * ex - wx * ez, wz_ = wx * ey - wy * ex;
+    return (wx_ * cx + wy_ * cy + wz_ * cz) / (cx * cx + cy * cy + cz * cz);
+  }
+  double t_plane(const Ctx& x, const Point& a, const Point& b, const Point& c) const {
+    const double ax = CGAL::to_double(a.x()), ay = CGAL::to_double(a.y()), az = CGAL::to_double(a.z());
+    const double ux = CGAL::to_double(b.x()) - ax, uy = CGAL::to_double(b.y()) - ay, uz = CGAL::to_double(b.z()) - az;
+    const double vx = CGAL::to_double(c.x()) - ax, vy = CGAL::to_double(c.y()) - ay, vz = CGAL::to_double(c.z()) - az;
+    const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+    return (nx * (ax - x.qx) + ny * (ay - x.qy) + nz * (az - x.qz)) / (nx * x.dx + ny * x.dy + nz * x.dz);
+  }
+  // Parameter of the point of the segment in face s, clamped to [lo, 1].
+  double t_of(const Ctx& x, const Simplex& s, double lo) const {
+    int id[3], k = 0;
+    for (int i = 0; i < 4 && k < 3; ++i)
+      if (s.mask & (1u << i)) id[k++] = i;
+    double t;
+    switch (k) {
+    case 1: t = t_vertex(x, pt(s.c, id[0])); break;
+    case 2: t = t_edge(x, pt(s.c, id[0]), pt(s.c, id[1])); break;
+    default: t = t_plane(x, pt(s.c, id[0]), pt(s.c, id[1]), pt(s.c, id[2])); break;
+    }
+    return clamp_t(t, lo);
+  }
+  static double clamp_t(double t, double lo) {
+    if (!(t >= lo)) return lo; // also NaN
+    return t > 1.0 ? 1.0 : t;
+  }
+
+  // ------------------------------------------------------------------ walk
+  template <class S>
+  void walk(const Point& q, const Point& p, Simplex start, S& sink) const {
+    Ctx x(q, p, max_steps_);
+    Next nx;
+    if (!start.valid()) {
+      nx = gap(x, Simplex(), 0.0, sink);
+    } else {
+      nx.done = false;
+      nx.s = start;
+      nx.t = 0.0;
+    }
+    while (!nx.done) {
+      x.tick();
+      nx = from_point(x, nx, sink);
+    }
+  }
+
+  // The walk is at x(t) in the relative interior of nx.s (t < 1): emit that
+  // zero-length piece (unless the segment goes on inside nx.s, which happens
+  // only at q), find the simplex the segment enters next and traverse it.
+  template <class S>
+  Next from_point(Ctx& x, const Next& nx, S& sink) const {
+    const Simplex& s = nx.s;
+    const double t = nx.t;
+    if (nx.crossed) {
+      sink(s, t, t, true);
+      int k = 0;
+      while (s.mask & (1u << k)) ++k;
+      const Cell_handle n = s.c->neighbor(k);
+      if (!is_domain_cell(n)) return gap(x, s, t, sink);
+      return fast_cells(x, n, n->index(s.c), t, sink);
+    }
+    const Simplex tt = enter(x, s);
+    if (!tt.valid()) {
+      sink(s, t, t, true);
+      return gap(x, s, t, sink);
+    }
+    if (tt.dimension() != s.dimension()) sink(s, t, t, true);
+    switch (tt.dimension()) {
+    case 3: return traverse_cell(x, tt.c, t, sink);
+    case 2: return traverse_facet(x, tt, t, sink);
+    default: return traverse_edge(x, tt, t, sink);
+    }
+  }
+
+  // Semi-static filter for the sign of det[a, b, c] (rows), where the rows are
+  // differences of double coordinates computed in double, as in CGAL's static
+  // filter of Orientation_3: the same expression shape, with a bound twice
+  // as large. Returns 2 when the sign is not certified (the caller then asks
+  // the exact predicate of the traits).
+  static int filtered_det_sign(const double* a, const double* b, const double* c) {
+    const double mx = std::max(std::fabs(a[0]), std::max(std::fabs(b[0]), std::fabs(c[0])));
+    const double my = std::max(std::fabs(a[1]), std::max(std::fabs(b[1]), std::fabs(c[1])));
+    const double mz = std::max(std::fabs(a[2]), std::max(std::fabs(b[2]), std::fabs(c[2])));
+    if (!(mx >= 1e-90 && my >= 1e-90 && mz >= 1e-90 && mx <= 1e90 && my <= 1e90 && mz <= 1e90)) return 2;
+    const double det = a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+    const double eps = 1e-14 * mx * my * mz;
+    if (det > eps) return 1;
+    if (det < -eps) return -1;
+    return 2;
+  }
+#ifdef CGAL_EXT_WALK_NO_STATIC_FILTER
+  static constexpr bool double_coordinates = false;
+#else
+  static constexpr bool double_coordinates = std::is_same<typename Kernel::FT, double>::value;
+#endif
+  static void diff(const Point& a, double qx, double qy, double qz, double* r) {
+    r[0] = CGAL::to_double(a.x()) - qx;
+    r[1] = CGAL::to_double(a.y()) - qy;
+    r[2] = CGAL::to_double(a.z()) - qz;
+  }
+  // orientation(q, p, d, v), with dq = d - q already computed.
+  CGAL::Orientation orient_qp(const Ctx& x, const double* dq, const Point& d, const Point& v) const {
+    if (double_coordinates) {
+      double vq[3];
+      diff(v, x.qx, x.qy, x.qz, vq);
+      const double D[3] = {x.dx, x.dy, x.dz};
+      const int s = filtered_det_sign(D, dq, vq);
+      if (s != 2) return CGAL::Orientation(s);
+    }
+    return orient_(x.q, x.p, d, v);
+  }
+
+  // The classic straight walk through cells entered by the interior of a
+  // facet: two orientation tests choose the exit facet, a third tells
+  // whether p was reached. A zero falls back on the exact general step.
+  template <class S>
+  Next fast_cells(Ctx& x, Cell_handle c, int j, double t_in, S& sink) const {
+    const Point& p = x.p;
+    for (;;) {
+      x.tick();
+      const std::array<int, 3>& f = internal::walk_inner_facet(j);
+#if defined(__GNUC__)
+      // The walk is bound by memory latency on large meshes: start loading the
+      // three possible next cells while the new vertex is loaded and tested.
+      __builtin_prefetch(&*c->neighbor(f[0]));
+      __builtin_prefetch(&*c->neighbor(f[1]));
+      __builtin_prefetch(&*c->neighbor(f[2]));
+#endif
+      const Point& d = pt(c, j);
+      double dq[3];
+      diff(d, x.qx, x.qy, x.qz, dq);
+      // The segment enters through facet (a, b, cc), which it crosses from the
+      // negative to the positive side; the plane (q, p, d) separates its vertices.
+      int k = -1;
+      const CGAL::Orientation sa = orient_qp(x, dq, d, pt(c, f[0]));
+      if (sa == CGAL::POSITIVE) {
+        const CGAL::Orientation sb = orient_qp(x, dq, d, pt(c, f[1]));
+        if (sb == CGAL::NEGATIVE) k = f[2];
+        else if (sb == CGAL::POSITIVE) k = f[0];
+      } else if (sa == CGAL::NEGATIVE) {
+        const CGAL::Orientation sc = orient_qp(x, dq, d, pt(c, f[2]));
+        if (sc == CGAL::POSITIVE) k = f[1];
+        else if (sc == CGAL::NEGATIVE) k = f[0];
+      }
+      if (k < 0) return traverse_cell(x, c, t_in, sink); // through an edge or a vertex
+      // Exit facet (a, b, e), ordered so that the cell is on its positive side:
+      // p is reached iff orientation(a, b, e, p) >= 0. Its normal also gives t.
+      const std::array<int, 3>& g = internal::walk_inner_facet(k);
+      const Point &a = pt(c, g[0]), &b = pt(c, g[1]), &e = pt(c, g[2]);
+      const double ax = CGAL::to_double(a.x()), ay = CGAL::to_double(a.y()), az = CGAL::to_double(a.z());
+      double ba[3], ea[3], pa[3];
+      diff(b, ax, ay, az, ba);
+      diff(e, ax, ay, az, ea);
+      diff(p, ax, ay, az, pa);
+      int op = 2;
+      if (double_coordinates) op = filtered_det_sign(ba, ea, pa);
+      if (op == 2) op = int(orient_(a, b, e, p));
+      if (op >= 0) {
+        sink(Simplex{c, 15u}, t_in, 1.0, false);
+        if (op == 0) sink(Simplex{c, 15u & ~(1u << k)}, 1.0, 1.0, true);
+        return Next();
+      }
+      const double nx = ba[1] * ea[2] - ba[2] * ea[1], ny = ba[2] * ea[0] - ba[0] * ea[2], nz = ba[0] * ea[1] - ba[1] * ea[0];
+      const double t_out =
+          clamp_t((nx * (ax - x.qx) + ny * (ay - x.qy) + nz * (az - x.qz)) / (nx * x.dx + ny * x.dy + nz * x.dz), t_in);
+      const Simplex fct{c, 15u & ~(1u << k)};
+      sink(Simplex{c, 15u}, t_in, t_out, false);
+      const Cell_handle n = c->neighbor(k);
+      if (!is_domain_cell(n)) return Next{false, fct, t_out, true};
+      sink(fct, t_out, t_out, true);
+      j = n->index(c);
+      c = n;
+      t_in = t_out;
+    }
+  }
+
+  // Exact general traversal of the open cell c, entered at parameter t_in.
+  template <class S>
+  Next traverse_cell(Ctx& x, Cell_handle c, double t_in, S& sink) const {
+    CGAL::Orientation o[4];
+    bool inside = true, closed = true;
+    for (int i = 0; i < 4; ++i) {
+      o[i] = orient_x(c, i, x.p);
+      if (o[i] != CGAL::POSITIVE) inside = false;
+      if (o[i] == CGAL::NEGATIVE) closed = false;
+    }
+    if (closed) {
+      sink(Simplex{c, 15u}, t_in, 1.0, false);
+      if (!inside) {
+        unsigned m = 0;
+        for (int i = 0; i < 4; ++i)
+          if (o[i] == CGAL::POSITIVE) m |= 1u << i;
+        sink(Simplex{c, m}, 1.0, 1.0, true);
+      }
+      return Next();
+    }
+    // p is beyond the exit point B. The facets through B are those beyond
+    // which p lies and that the line meets; the line meets the facet at the
+    // entry point only if p is on its inner side.
+    unsigned exits = 0, negative = 0;
+    for (int i = 0; i < 4; ++i)
+      if (o[i] == CGAL::NEGATIVE) negative |= 1u << i;
+    // B lies on at least one facet beyond which p lies: if there is only one,
+    // it is the exit facet and B is in its interior.
+    if (internal::walk_popcount(negative) == 1) {
+      exits = negative;
+    } else {
+      // Otherwise B is on the facets of negative that the line meets.
+      for (int i = 0; i < 4; ++i) {
+        if (o[i] != CGAL::NEGATIVE) continue;
+        const std::array<int, 3>& f = internal::walk_inner_facet(i);
+        const CGAL::Orientation s1 = orient4(x.q, x.p, pt(c, f[0]), pt(c, f[1]));
+        const CGAL::Orientation s2 = orient4(x.q, x.p, pt(c, f[1]), pt(c, f[2]));
+        const CGAL::Orientation s3 = orient4(x.q, x.p, pt(c, f[2]), pt(c, f[0]));
+        const bool nonneg = s1 != CGAL::NEGATIVE && s2 != CGAL::NEGATIVE && s3 != CGAL::NEGATIVE;
+        const bool nonpos = s1 != CGAL::POSITIVE && s2 != CGAL::POSITIVE && s3 != CGAL::POSITIVE;
+        if ((nonneg || nonpos) && !(nonneg && nonpos)) exits |= 1u << i;
+      }
+    }
+    if (exits == 0 || exits == 15u) throw_inconsistent(x, "no exit from a cell");
+    const Simplex f{c, 15u & ~exits};
+    const double t_out = t_of(x, f, t_in);
+    sink(Simplex{c, 15u}, t_in, t_out, false);
+    return Next{false, f, t_out, internal::walk_popcount(exits) == 1};
+  }
+
+  // Traversal of the open facet s (the segment lies in its plane).
+  template <class S>
+  Next traverse_facet(Ctx& x, const Simplex& s, double t_in, S& sink) const {
+    int v[3], k = 0;
+    for (int i = 0; i < 4; ++i)
+      if (s.mask & (1u << i)) v[k++] = i;
+    const Cell_handle c = s.c;
+    // w[i] > 0 iff p is strictly on the side of vertex v[i] of the opposite edge
+    CGAL::Orientation w[3];
+    bool inside = true, closed = true;
+    for (int i = 0; i < 3; ++i) {
+      w[i] = coplanar_orient_(pt(c, v[(i + 1) % 3]), pt(c, v[(i + 2) % 3]), pt(c, v[i]), x.p);
+      if (w[i] != CGAL::POSITIVE) inside = false;
+      if (w[i] == CGAL::NEGATIVE) closed = false;
+    }
+    if (closed) {
+      sink(s, t_in, 1.0, false);
+      if (!inside) {
+        unsigned m = 0;
+        for (int i = 0; i < 3; ++i)
+          if (w[i] == CGAL::POSITIVE) m |= 1u << v[i];
+        sink(Simplex{c, m}, 1.0, 1.0, true);
+      }
+      return Next();
+    }
+    unsigned m = s.mask;
+    CGAL::Orientation side[3];
+    for (int i = 0; i < 3; ++i) side[i] = coplanar_orient_(x.q, x.p, pt(c, v[i]));
+    for (int i = 0; i < 3; ++i) {
+      if (w[i] != CGAL::NEGATIVE) continue;
+      const CGAL::Orientation a = side[(i + 1) % 3], b = side[(i + 2) % 3];
+      if (a == CGAL::ZERO || b == CGAL::ZERO || a != b) m &= ~(1u << v[i]);
+    }
+    if (m == s.mask || m == 0) throw_inconsistent(x, "no exit from a facet");
+    const Simplex f{c, m};
+    const double t_out = t_of(x, f, t_in);
+    sink(s, t_in, t_out, false);
+    return Next{false, f, t_out, false};
+  }
+
+  // Traversal of the open edge s (the segment runs along it).
+  template <class S>
+  Next traverse_edge(Ctx& x, const Simplex& s, double t_in, S& sink) const {
+    int v[2], k = 0;
+    for (int i = 0; i < 4; ++i)
+      if (s.mask & (1u << i)) v[k++] = i;
+    const Point &a = pt(s.c, v[0]), &b = pt(s.c, v[1]);
+    if (strictly_ordered_(a, x.p, b)) {
+      sink(s, t_in, 1.0, false);
+      return Next();
+    }
+    if (x.p == a || x.p == b) {
+      sink(s, t_in, 1.0, false);
+      sink(Simplex{s.c, 1u << (x.p == a ? v[0] : v[1])}, 1.0, 1.0, true);
+      return Next();
+    }
+    const int e = strictly_ordered_(b, a, x.p) ? v[0] : v[1];
+    const Simplex f{s.c, 1u << e};
+    const double t_out = t_of(x, f, t_in);
+    sink(s, t_in, t_out, false);
+    return Next{false, f, t_out, false};
+  }
+
+  [[noreturn]] void throw_inconsistent(const Ctx& x, const char* what) const {
+    std::ostringstream os;
+    os.precision(17);
+    os << "Segment_walk_3: inconsistent predicates (" << what << ") on the segment (" << x.q << ") -> (" << x.p
+       << "); the triangulation is probably not valid";
+    throw std::logic_error(os.str());
+  }
+
+  // ------------------------------------------------------------------ star
+  // The simplex the segment enters just after x(t), a point of the relative
+  // interior of s (x(t) != p): for each domain cell C around s, the facets of
+  // C through s on which p lies contain the simplex entered, and p strictly
+  // inside the others means the segment enters C's face spanned by s and
+  // their opposite vertices. Invalid if the segment leaves the domain.
+  Simplex enter(Ctx& x, const Simplex& s) const {
+    if (s.mask == 15u) return s;
+    Vertex_handle sv[3];
+    int ns = 0;
+    for (int i = 0; i < 4; ++i)
+      if (s.mask & (1u << i)) sv[ns++] = s.c->vertex(i);
+    Simplex result;
+    auto try_cell = [&](Cell_handle cc) -> bool {
+      x.tick();
+      if (!is_domain_cell(cc)) return false;
+      unsigned m = 0;
+      for (int k = 0; k < ns; ++k) m |= 1u << cc->index(sv[k]);
+      unsigned tm = m;
+      for (int i = 0; i < 4; ++i) {
+        if (m & (1u << i)) continue;
+        const CGAL::Orientation o = orient_x(cc, i, x.p);
+        if (o == CGAL::NEGATIVE) return false;
+        if (o == CGAL::POSITIVE) tm |= 1u << i;
+      }
+      result = Simplex{cc, tm};
+      return true;
+    };
+    if (ns == 3) {
+      int k = 0;
+      while (s.mask & (1u << k)) ++k;
+      if (!try_cell(s.c)) try_cell(s.c->neighbor(k));
+    } else if (ns == 2) {
+      for_each_edge_cell(x, s.c, sv[0], sv[1], try_cell);
+    } else {
+      for_each_vertex_cell(x, s.c, sv[0], try_cell);
+    }
+    return result;
+  }
+
+  // Cells around the edge (a, b) of c, by circulation (stops when f returns true).
+  template <class F>
+  void for_each_edge_cell(Ctx& x, Cell_handle c, Vertex_handle a, Vertex_handle b, F& f) const {
+    if (f(c)) return;
+    const int ia = c->index(a), ib = c->index(b);
+    int k = 0;
+    while (k == ia || k == ib) ++k;
+    Cell_handle prev = c, cur = c->neighbor(k);
+    while (cur != c) {
+      x.tick();
+      if (f(cur)) return;
+      const int ja = cur->index(a), jb = cur->index(b), jp = cur->index(prev);
+      const int l = 6 - ja - jb - jp;
+      prev = cur;
+      cur = cur->neighbor(l);
+    }
+  }
+
+  // Cells around the vertex v of c: search through the facets containing v,
+  // from c and from one cell of every other component of the star.
+  template <class F>
+  void for_each_vertex_cell(Ctx& x, Cell_handle c, Vertex_handle v, F& f) const {
+    ensure_boundary();
+    x.visited.clear();
+    x.stack.clear();
+    auto push = [&](Cell_handle cc) {
+      if (std::find(x.visited.begin(), x.visited.end(), cc) != x.visited.end()) return;
+      x.visited.push_back(cc);
+      x.stack.push_back(cc);
+    };
+    push(c);
+    const auto seeds = shared_->vertex_seeds.find(&*v);
+    if (seeds != shared_->vertex_seeds.end())
+      for (Cell_handle sc : seeds->second) push(sc);
+    while (!x.stack.empty()) {
+      const Cell_handle cur = x.stack.back();
+      x.stack.pop_back();
+      if (f(cur)) return;
+      const int iv = cur->index(v);
+      for (int i = 0; i < 4; ++i)
+        if (i != iv) push(cur->neighbor(i));
+    }
+  }
+
+  // ------------------------------------------------------------------- gap
+  EPoint ek(const Point& a) const {
+    return EPoint(CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z()));
+  }
+
+  // Exact parameter of the point where the segment meets face s (not along it).
+  EFT exact_t(const Ctx& x, const Simplex& s) const {
+    if (!s.valid()) return EFT(0);
+    const EPoint Q = ek(x.q);
+    const EVector D = ek(x.p) - Q;
+    EPoint v[3];
+    int k = 0;
+    for (int i = 0; i < 4 && k < 3; ++i)
+      if (s.mask & (1u << i)) v[k++] = ek(pt(s.c, i));
+    if (k == 1) return ((v[0] - Q) * D) / (D * D);
+    if (k == 2) return exact_t_line(Q, D, v[0], v[1]);
+    const EVector n = CGAL::cross_product(v[1] - v[0], v[2] - v[0]);
+    return (n * (v[0] - Q)) / (n * D);
+  }
+  // Parameter of the intersection of the line Q + t D with the coplanar, non-parallel line (a, b).
+  static EFT exact_t_line(const EPoint& Q, const EVector& D, const EPoint& a, const EPoint& b) {
+    const EVector e = b - a;
+    const EVector c2 = CGAL::cross_product(D, e);
+    return (CGAL::cross_product(a - Q, e) * c2) / (c2 * c2);
+  }
+
+  // Exact parameter of the first point of the line (q, p) in boundary
+  // triangle i (it may be < 0); false if the line misses it.
+  bool first_t_in_triangle(const Ctx& x, std::size_t i, EFT& t) const {
+    const Cell_handle c = shared_->triangle_facets[i].first;
+    const std::array<int, 3>& f = internal::walk_inner_facet(shared_->triangle_facets[i].second);
+    const Point &a = pt(c, f[0]), &b = pt(c, f[1]), &cc = pt(c, f[2]);
+    const EPoint Q = ek(x.q), A = ek(a), B = ek(b), C = ek(cc);
+    const EVector D = ek(x.p) - Q;
+    const EVector n = CGAL::cross_product(B - A, C - A);
+    const EFT nd = n * D;
+    if (nd != 0) {
+      const CGAL::Orientation s1 = orient_(x.q, x.p, a, b), s2 = orient_(x.q, x.p, b, cc), s3 = orient_(x.q, x.p, cc, a);
+      const bool nonneg = s1 != CGAL::NEGATIVE && s2 != CGAL::NEGATIVE && s3 != CGAL::NEGATIVE;
+      const bool nonpos = s1 != CGAL::POSITIVE && s2 != CGAL::POSITIVE && s3 != CGAL::POSITIVE;
+      if (!nonneg && !nonpos) return false;
+      t = (n * (A - Q)) / nd;
+      return true;
+    }
+    if (orient_(a, b, cc, x.q) != CGAL::ZERO) return false;
+    // The line lies in the plane of the triangle: smallest parameter over the edges it meets.
+    const Point* P[3] = {&a, &b, &cc};
+    const EPoint E[3] = {A, B, C};
+    CGAL::Orientation sd[3];
+    for (int j = 0; j < 3; ++j) sd[j] = coplanar_orient_(x.q, x.p, *P[j]);
+    bool found = false;
+    auto consider = [&](const EFT& u) {
+      if (!found || u < t) t = u;
+      found = true;
+    };
+    for (int j = 0; j < 3; ++j) {
+      const int l = (j + 1) % 3;
+      if (sd[j] != CGAL::ZERO && sd[j] == sd[l]) continue;
+      if (sd[j] == CGAL::ZERO && sd[l] == CGAL::ZERO) {
+        consider(((E[j] - Q) * D) / (D * D));
+        consider(((E[l] - Q) * D) / (D * D));
+      } else {
+        consider(exact_t_line(Q, D, E[j], E[l]));
+      }
+    }
+    return found;
+  }
+
+  // The segment leaves the closed domain just after x(t) (t == 0 and s
+  // invalid: q is outside). Emit the gap up to the next point of the closed
+  // domain, found among the boundary facets the segment meets.
+  template <class S>
+  Next gap(Ctx& x, const Simplex& s, double t, S& sink) const {
+    ensure_boundary();
+    if (!x.candidates_ready) {
+      x.candidates_ready = true;
+      if (!shared_->triangles.empty()) {
+        std::vector<Tri_iterator> ids;
+        shared_->tree->all_intersected_primitives(typename Kernel::Segment_3(x.q, x.p), std::back_inserter(ids));
+        for (const Tri_iterator& it : ids) {
+          const std::size_t i = static_cast<std::size_t>(it - shared_->triangles.begin());
+          EFT u;
+          if (first_t_in_triangle(x, i, u)) x.candidates.emplace_back(u, i);
+        }
+        std::sort(x.candidates.begin(), x.candidates.end(),
+                  [](const std::pair<EFT, std::size_t>& a, const std::pair<EFT, std::size_t>& b) { return a.first < b.first; });
+      }
+    }
+    const EFT ts = exact_t(x, s);
+    auto it = std::upper_bound(x.candidates.begin(), x.candidates.end(), ts,
+                               [](const EFT& v, const std::pair<EFT, std::size_t>& e) { return v < e.first; });
+    if (it == x.candidates.end() || it->first > 1) {
+      sink(Simplex(), t, 1.0, false);
+      return Next();
+    }
+    const EFT ty = it->first;
+    const std::size_t i = it->second;
+    // The simplex of the re-entry point: the lowest face of the triangle containing it.
+    const Cell_handle c = shared_->triangle_facets[i].first;
+    const std::array<int, 3>& f = internal::walk_inner_facet(shared_->triangle_facets[i].second);
+    const EPoint Q = ek(x.q);
+    const EPoint Y = Q + (ek(x.p) - Q) * ty;
+    EPoint V[3];
+    for (int j = 0; j < 3; ++j) V[j] = ek(pt(c, f[j]));
+    unsigned m = 0;
+    for (int j = 0; j < 3 && m == 0; ++j)
+      if (Y == V[j]) m = 1u << f[j];
+    for (int j = 0; j < 3 && m == 0; ++j)
+      if (CGAL::collinear(V[j], V[(j + 1) % 3], Y)) m = (1u << f[j]) | (1u << f[(j + 1) % 3]);
+    if (m == 0) m = (1u << f[0]) | (1u << f[1]) | (1u << f[2]);
+    const Simplex ns{c, m};
+    if (ty == 1) {
+      sink(Simplex(), t, 1.0, false);
+      sink(ns, 1.0, 1.0, true);
+      return Next();
+    }
+    const double td = clamp_t(CGAL::to_double(ty), t);
+    sink(Simplex(), t, td, false);
+    return Next{false, ns, td, false};
+  }
+
+  // Boundary facets, their AABB tree, and the extra seeds of vertex stars.
+  void ensure_boundary() const {
+    std::call_once(shared_->boundary_once, [this] {
+      Shared& sh = *shared_;
+      std::unordered_map<const void*, std::size_t> bindex; // boundary vertex -> slot
+      std::vector<Vertex_handle> bverts;
+      for (auto c : tr_->finite_cell_handles()) {
+        if (!is_domain_cell(c)) continue;
+        for (int i = 0; i < 4; ++i) {
+          if (is_domain_cell(c->neighbor(i))) continue;
+          const std::array<int, 3>& f = internal::walk_inner_facet(i);
+          sh.triangles.emplace_back(pt(c, f[0]), pt(c, f[1]), pt(c, f[2]));
+          sh.triangle_facets.emplace_back(c, i);
+          for (int j : f)
+            if (bindex.emplace(&*c->vertex(j), bverts.size()).second) bverts.push_back(c->vertex(j));
+        }
+      }
+      if (!sh.triangles.empty()) {
+        sh.tree = std::make_unique<AABB>(sh.triangles.begin(), sh.triangles.end());
+        sh.tree->build();
+      }
+      // Domain cells around each boundary vertex, then their components
+      // through facets containing the vertex.
+      std::vector<std::vector<Cell_handle>> around(bverts.size());
+      for (auto c : tr_->finite_cell_handles()) {
+        if (!is_domain_cell(c)) continue;
+        for (int i = 0; i < 4; ++i) {
+          const auto b = bindex.find(&*c->vertex(i));
+          if (b != bindex.end()) around[b->second].push_back(c);
+        }
+      }
+      std::vector<Cell_handle> visited, stack;
+      for (std::size_t k = 0; k < bverts.size(); ++k) {
+        const Vertex_handle v = bverts[k];
+        visited.clear();
+        std::vector<Cell_handle> seeds;
+        for (Cell_handle start : around[k]) {
+          if (std::find(visited.begin(), visited.end(), start) != visited.end()) continue;
+          seeds.push_back(start); // one cell per component, the first one included
+          visited.push_back(start);
+          stack.assign(1, start);
+          while (!stack.empty()) {
+            const Cell_handle cur = stack.back();
+            stack.pop_back();
+            const int iv = cur->index(v);
+            for (int i = 0; i < 4; ++i) {
+              if (i == iv) continue;
+              const Cell_handle n = cur->neighbor(i);
+              if (std::find(visited.begin(), visited.end(), n) != visited.end()) continue;
+              visited.push_back(n);
+              stack.push_back(n);
+            }
+          }
+        }
+        if (seeds.size() > 1) sh.vertex_seeds.emplace(&*v, std::move(seeds));
+      }
+    });
+  }
+
+  // -------------------------------------------------------------- location
+  void ensure_grid() const {
+    std::call_once(shared_->grid_once, [this] {
+      Shared& sh = *shared_;
+      std::array<double, 3> lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+      std::size_t nc = 0;
+      for (auto c : tr_->finite_cell_handles()) {
+        if (!is_domain_cell(c)) continue;
+        if (sh.any_domain_cell == Cell_handle()) sh.any_domain_cell = c;
+        ++nc;
+        for (int i = 0; i < 4; ++i) {
+          const Point& a = pt(c, i);
+          const double xyz[3] = {CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z())};
+          for (int d = 0; d < 3; ++d) {
+            lo[d] = std::min(lo[d], xyz[d]);
+            hi[d] = std::max(hi[d], xyz[d]);
+          }
+        }
+      }
+      if (nc == 0) return;
+      const int r = std::max(1, std::min(64, int(std::cbrt(double(nc) / 8.0))));
+      for (int d = 0; d < 3; ++d) {
+        sh.lo[d] = lo[d];
+        sh.n[d] = r;
+        sh.step[d] = hi[d] > lo[d] ? (hi[d] - lo[d]) / r : 1.0;
+      }
+      sh.grid.assign(std::size_t(r) * r * r, Cell_handle());
+      for (auto c : tr_->finite_cell_handles()) {
+        if (!is_domain_cell(c)) continue;
+        double g[3] = {0, 0, 0};
+        for (int i = 0; i < 4; ++i) {
+          const Point& a = pt(c, i);
+          g[0] += 0.25 * CGAL::to_double(a.x());
+          g[1] += 0.25 * CGAL::to_double(a.y());
+          g[2] += 0.25 * CGAL::to_double(a.z());
+        }
+        Cell_handle& b = sh.grid[grid_index(g)];
+        if (b == Cell_handle()) b = c;
+      }
+    });
+  }
+  int grid_coord(double v, int d) const {
+    const Shared& sh = *shared_;
+    const double u = (v - sh.lo[d]) / sh.step[d];
+    if (!(u >= 0)) return 0;
+    return u >= sh.n[d] ? sh.n[d] - 1 : int(u);
+  }
+  std::size_t grid_index(const double* g) const {
+    const Shared& sh = *shared_;
+    return (std::size_t(grid_coord(g[2], 2)) * sh.n[1] + grid_coord(g[1], 1)) * sh.n[0] + grid_coord(g[0], 0);
+  }
+  Cell_handle grid_start(const Point& x) const {
+    ensure_grid();
+    const Shared& sh = *shared_;
+    if (sh.grid.empty()) return Cell_handle();
+    const double g[3] = {CGAL::to_double(x.x()), CGAL::to_double(x.y()), CGAL::to_double(x.z())};
+    const int ci = grid_coord(g[0], 0), cj = grid_coord(g[1], 1), ck = grid_coord(g[2], 2);
+    const int rmax = std::max(sh.n[0], std::max(sh.n[1], sh.n[2]));
+    for (int r = 0; r <= rmax; ++r)
+      for (int k = std::max(0, ck - r); k <= std::min(sh.n[2] - 1, ck + r); ++k)
+        for (int j = std::max(0, cj - r); j <= std::min(sh.n[1] - 1, cj + r); ++j)
+          for (int i = std::max(0, ci - r); i <= std::min(sh.n[0] - 1, ci + r); ++i) {
+            if (std::max(std::abs(i - ci), std::max(std::abs(j - cj), std::abs(k - ck))) != r) continue;
+            const Cell_handle c = sh.grid[(std::size_t(k) * sh.n[1] + j) * sh.n[0] + i];
+            if (c != Cell_handle()) return c;
+          }
+    return sh.any_domain_cell;
+  }
+
+  // The lowest-dimensional domain simplex containing x, or invalid.
+  Simplex locate_simplex(const Point& x, Cell_handle hint) const {
+    Cell_handle c = is_domain_cell(hint) ? hint : grid_start(x);
+    if (c == Cell_handle()) return Simplex(); // empty domain
+    // Visibility walk among domain cells; it ends in Delaunay triangulations,
+    // and is bounded otherwise.
+    const std::size_t bound = 64 + 4 * static_cast<std::size_t>(std::cbrt(double(tr_->number_of_cells()))) * 8;
+    unsigned rot = 0;
+    for (std::size_t step = 0; step < bound; ++step) {
+      CGAL::Orientation o[4];
+      int neg = -1;
+      const unsigned start = rot++ & 3u;
+      for (unsigned r = 0; r < 4; ++r) {
+        const int i = int((start + r) & 3u);
+        o[i] = orient_x(c, i, x);
+        if (o[i] == CGAL::NEGATIVE) {
+          neg = i;
+          break;
+        }
+      }
+      if (neg < 0) {
+        unsigned m = 0;
+        for (int i = 0; i < 4; ++i)
+          if (o[i] == CGAL::POSITIVE) m |= 1u << i;
+        return Simplex{c, m};
+      }
+      const Cell_handle n = c->neighbor(neg);
+      if (!is_domain_cell(n)) break;
+      c = n;
+    }
+    // Exact fallback: walk from a vertex of c to x.
+    const Point& v = pt(c, 0);
+    if (v == x) return Simplex{c, 1u};
+    Last_sink sink;
+    walk(v, x, Simplex{c, 1u}, sink);
+    return sink.last;
+  }
+
+  const Tr* tr_;
+  Domain_predicate in_domain_;
+  std::shared_ptr<Shared> shared_;
+  typename Kernel::Orientation_3 orient_;
+  typename Kernel::Coplanar_orientation_3 coplanar_orient_;
+  typename Kernel::Collinear_are_strictly_ordered_along_line_3 strictly_ordered_;
+  std::size_t max_steps_ = 0;
+};
+
+} // namespace CGAL_ext
+
+#endif // CGAL_EXT_SEGMENT_WALK_3_H

@@ -1,0 +1,53 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#include "point_pairs_file.h"
+
+#include <CGAL_ext/Input_error.h>
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <string_view>
+
+namespace CGAL_ext::cli {
+
+std::vector<Point_pair> read_point_pairs(const std::string& path) {
+  std::ifstream file;
+  std::istream* in = &std::cin;
+  if (path != "-") {
+    file.open(path);
+    if (!file) throw Input_error(path, 0, "", "cannot open the file for reading");
+    in = &file;
+  }
+  std::vector<Point_pair> pairs;
+  std::string line;
+  for (std::size_t number = 1; std::getline(*in, line); ++number) {
+    std::string_view s(line);
+    const auto first = s.find_first_not_of(" \t\r");
+    if (first == std::string_view::npos || s[first] == '#') continue;
+    double v[6];
+    int n = 0;
+    std::size_t pos = first;
+    while (pos < s.size()) {
+      const auto end = s.find_first_of(" \t\r,", pos);
+      std::string_view tok = s.substr(pos, end == std::string_view::npos ? std::string_view::npos : end - pos);
+      if (!tok.empty()) {
+        if (n == 6) throw Input_error(path, number, "", "more than 6 numbers on the line");
+        if (tok.front() == '+') tok.remove_prefix(1);
+        const auto r = std::from_chars(tok.data(), tok.data() + tok.size(), v[n]);
+        if (r.ec != std::errc() || r.ptr != tok.data() + tok.size() || !std::isfinite(v[n]))
+          throw Input_error(path, number, "", "'" + std::string(tok.substr(0, 40)) + "' is not a finite number");
+        ++n;
+      }
+      if (end == std::string_view::npos) break;
+      pos = end + 1;
+    }
+    if (n != 6) throw Input_error(path, number, "", "expected 6 numbers (ax ay az bx by bz), found " + std::to_string(n));
+    pairs.push_back({{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, number});
+  }
+  if (in->bad()) throw Input_error(path, 0, "", "read error");
+  return pairs;
+}
+
+} // namespace CGAL_ext::cli

@@ -1,0 +1,526 @@
+// Property tests of the exact segment walk: tiling of [0, 1], incidence of
+// consecutive pieces, fast mode against full output, gaps of non-convex
+// domains, agreement with point location and, on generic segments, with
+// CGAL's segment traverser. The exact brute-force comparison is in
+// test_segment_walk_reference.cpp.
+#include "walk_test_meshes.h"
+
+#include <CGAL_ext/Point_locator_3.h>
+#include <CGAL_ext/Segment_walk_3.h>
+#include <CGAL_ext/Tet_mesh_triangulation_3.h>
+#include <CGAL_ext/build_triangulation_from_tets.h>
+
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <limits>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+using namespace CGAL_ext;
+using namespace CGAL_ext::testing;
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Mesh_tr = Tet_mesh_triangulation_3<K>;
+using Mesh_walk = Segment_walk_3<Mesh_tr, Is_tet_mesh_domain_cell>;
+using DT = CGAL::Delaunay_triangulation_3<K>;
+
+template <class Tr>
+std::string describe(const std::vector<Segment_walk_piece_3<Tr>>& w) {
+  std::ostringstream os;
+  os.precision(17);
+  for (const auto& x : w) {
+    os << "  dim " << x.dimension << " {";
+    for (int i = 0; i <= x.dimension; ++i) os << (i ? " " : "") << x.vertices[i]->point();
+    os << "} [" << x.t_in << ", " << x.t_out << "]\n";
+  }
+  return os.str();
+}
+
+template <class Tr>
+std::set<const void*> vset(const Segment_walk_piece_3<Tr>& x) {
+  std::set<const void*> s;
+  for (int i = 0; i <= x.dimension; ++i) s.insert(&*x.vertices[i]);
+  return s;
+}
+
+// Every structural property of a full output; returns an empty string or the first violation.
+template <class Tr, class Walk>
+std::string full_violation(const Tr& tr, const Walk& walk, const std::vector<Segment_walk_piece_3<Tr>>& w,
+                           bool degenerate_segment) {
+  if (w.empty()) return "no piece";
+  if (w.front().t_in != 0.0) return "first t_in is not 0";
+  if (w.back().t_out != 1.0) return "last t_out is not 1";
+  if (degenerate_segment && w.size() != 1) return "q == p but several pieces";
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    const auto& x = w[i];
+    const std::string at = "piece " + std::to_string(i) + ": ";
+    if (!(x.t_in <= x.t_out)) return at + "t_in > t_out";
+    if (i + 1 < w.size() && x.t_out != w[i + 1].t_in) return at + "not adjacent to the next piece";
+    if (x.dimension < -1 || x.dimension > 3) return at + "bad dimension";
+    if (x.dimension < 0) {
+      if (x.cell != typename Tr::Cell_handle()) return at + "a gap with a cell";
+      if (i + 1 < w.size() && w[i + 1].dimension < 0) return at + "two consecutive gaps in full output";
+      // Leaving or entering the domain happens at a point of a boundary simplex.
+      if (i > 0 && (w[i - 1].t_in != w[i - 1].t_out || w[i - 1].dimension > 2)) return at + "gap after a piece of positive length";
+      if (i + 1 < w.size() && (w[i + 1].t_in != w[i + 1].t_out || w[i + 1].dimension > 2))
+        return at + "gap before a piece of positive length";
+      continue;
+    }
+    if (!walk.is_domain_cell(x.cell)) return at + "cell not in the domain";
+    for (int k = 0; k <= x.dimension; ++k) {
+      if (x.vertices[k] == typename Tr::Vertex_handle()) return at + "null vertex";
+      if (!x.cell->has_vertex(x.vertices[k])) return at + "cell not incident to the simplex";
+      for (int l = 0; l < k; ++l)
+        if (x.vertices[k] == x.vertices[l]) return at + "repeated vertex";
+    }
+    for (int k = x.dimension + 1; k < 4; ++k)
+      if (x.vertices[k] != typename Tr::Vertex_handle()) return at + "extra vertex";
+    if (x.dimension == 3 && x.vertices[0] == x.vertices[1]) return at + "bad cell";
+    if (i + 1 < w.size() && w[i + 1].dimension >= 0) {
+      // Consecutive simplices: one is a proper face of the other.
+      const auto a = vset(x), b = vset(w[i + 1]);
+      const bool a_in_b = std::includes(b.begin(), b.end(), a.begin(), a.end());
+      const bool b_in_a = std::includes(a.begin(), a.end(), b.begin(), b.end());
+      if (!(a_in_b || b_in_a) || a == b) return at + "not a proper face of the next piece, nor the converse";
+      // A zero-length piece between two pieces is a face of both of lower dimension.
+      if (x.t_in == x.t_out && i > 0 && w[i - 1].dimension >= 0 && !degenerate_segment &&
+          !(x.dimension < w[i - 1].dimension && x.dimension < w[i + 1].dimension))
+        return at + "zero-length piece of dimension not below its neighbours'";
+    }
+    (void)tr;
+  }
+  return {};
+}
+
+// fast(q, p) is the full output without its zero-length pieces.
+template <class Tr>
+std::string fast_violation(const std::vector<Segment_walk_piece_3<Tr>>& full, const std::vector<Segment_walk_piece_3<Tr>>& fast,
+                           bool degenerate_segment) {
+  std::vector<Segment_walk_piece_3<Tr>> expected;
+  for (const auto& x : full)
+    if (degenerate_segment || x.t_in != x.t_out || x.dimension == 3) expected.push_back(x);
+  // A cell is never a zero-length structural piece; other zero-length pieces are.
+  if (!degenerate_segment) {
+    expected.clear();
+    for (std::size_t i = 0; i < full.size(); ++i) {
+      const auto& x = full[i];
+      if (x.t_in != x.t_out || x.dimension == 3 || x.dimension == -1) expected.push_back(x);
+    }
+  }
+  if (expected.size() != fast.size()) return "fast has " + std::to_string(fast.size()) + " pieces, expected " + std::to_string(expected.size());
+  for (std::size_t i = 0; i < fast.size(); ++i) {
+    if (expected[i].dimension != fast[i].dimension || vset(expected[i]) != vset(fast[i]) ||
+        expected[i].t_in != fast[i].t_in || expected[i].t_out != fast[i].t_out)
+      return "fast piece " + std::to_string(i) + " differs";
+  }
+  return {};
+}
+
+// Midpoints of pieces of positive length lie in the located simplex (cells)
+// or outside the domain (gaps): walk and location agree.
+template <class Tr, class Walk>
+std::string location_violation(const Walk& walk, const typename Tr::Point& q, const typename Tr::Point& p,
+                               const std::vector<Segment_walk_piece_3<Tr>>& w) {
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    const auto& x = w[i];
+    if (x.t_out - x.t_in < 1e-6 || (x.dimension != 3 && x.dimension != -1)) continue;
+    const double t = 0.5 * (x.t_in + x.t_out);
+    const typename Tr::Point m(q.x() + t * (p.x() - q.x()), q.y() + t * (p.y() - q.y()), q.z() + t * (p.z() - q.z()));
+    const auto l = walk.locate(m);
+    if (x.dimension == -1 && l.dimension != -1) return "midpoint of gap " + std::to_string(i) + " is in the domain";
+    if (x.dimension == 3 && (l.dimension != 3 || l.cell != x.cell))
+      return "midpoint of cell piece " + std::to_string(i) + " is located elsewhere";
+  }
+  return {};
+}
+
+template <class Tr, class Walk>
+void check_segment(const Tr& tr, const Walk& walk, const typename Tr::Point& q, const typename Tr::Point& p,
+                   bool check_location = true, std::vector<Segment_walk_piece_3<Tr>>* out = nullptr) {
+  std::vector<Segment_walk_piece_3<Tr>> full, fast;
+  walk(q, p, std::back_inserter(full));
+  walk.fast(q, p, std::back_inserter(fast));
+  const bool deg = q == p;
+  std::string why = full_violation(tr, walk, full, deg);
+  if (why.empty()) why = fast_violation(full, fast, deg);
+  if (why.empty() && check_location) why = location_violation<Tr>(walk, q, p, full);
+  if (!why.empty()) {
+    INFO("segment (" << q << ") -> (" << p << ")\n" << why << "\nfull:\n" << describe(full) << "fast:\n" << describe(fast));
+    CHECK(why.empty());
+  } else {
+    CHECK(why.empty());
+  }
+  if (out) *out = full;
+}
+
+Mesh_tr build(const Walk_test_mesh& m) {
+  Mesh_tr tr;
+  build_triangulation_from_tets(m.points, m.tets, {}, tr);
+  return tr;
+}
+
+int count_dim(const std::vector<Segment_walk_piece_3<Mesh_tr>>& w, int d) {
+  return int(std::count_if(w.begin(), w.end(), [d](const auto& x) { return x.dimension == d; }));
+}
+
+} // namespace
+
+TEST_CASE("segment walk: errors", "[segment_walk]") {
+  DT flat;
+  flat.insert(DT::Point(0, 0, 0));
+  flat.insert(DT::Point(1, 0, 0));
+  flat.insert(DT::Point(0, 1, 0));
+  flat.insert(DT::Point(1, 1, 0));
+  REQUIRE(flat.dimension() == 2);
+  CHECK_THROWS_AS(Segment_walk_3<DT>(flat), std::invalid_argument);
+  try {
+    Segment_walk_3<DT> w(flat);
+  } catch (const std::invalid_argument& e) {
+    CHECK(std::string(e.what()).find("dimension 2") != std::string::npos);
+  }
+
+  const Mesh_tr tr = build(make_kuhn_grid(1, 1, 1, [](int, int, int) { return true; }));
+  const Mesh_walk walk(tr, Is_tet_mesh_domain_cell());
+  std::vector<Segment_walk_piece_3<Mesh_tr>> out;
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  CHECK_THROWS_AS(walk(Mesh_tr::Point(nan, 0, 0), Mesh_tr::Point(0.5, 0.5, 0.5), std::back_inserter(out)), std::invalid_argument);
+  CHECK_THROWS_AS(walk.fast(Mesh_tr::Point(0, 0, 0), Mesh_tr::Point(0.5, inf, 0.5), std::back_inserter(out)), std::invalid_argument);
+  CHECK_THROWS_AS(walk.locate(Mesh_tr::Point(0, -inf, 0)), std::invalid_argument);
+}
+
+TEST_CASE("segment walk: q == p gives exactly one piece", "[segment_walk]") {
+  const Mesh_tr tr = build(make_kuhn_grid(2, 2, 2, [](int i, int j, int k) { return !(i == 1 && j == 1 && k == 1); }, 12.0));
+  const Mesh_walk walk(tr, Is_tet_mesh_domain_cell());
+  struct Case { double x, y, z; int dim; };
+  const Case cases[] = {
+      {0, 0, 0, 0},    {12, 12, 12, 0}, {24, 24, 12, 0}, {6, 0, 0, 1},   {6, 6, 6, 1}, // main diagonal
+      {6, 6, 0, 1},    {8, 4, 0, 2},    {9, 6, 3, 3},    {18, 18, 18, -1}, {30, 0, 0, -1}, {24, 24, 24, -1},
+      {18, 18, 12, 1}, // face diagonal on the boundary of the removed cube
+  };
+  for (const Case& c : cases) {
+    const Mesh_tr::Point x(c.x, c.y, c.z);
+    std::vector<Segment_walk_piece_3<Mesh_tr>> full, fast;
+    walk(x, x, std::back_inserter(full));
+    walk.fast(x, x, std::back_inserter(fast));
+    INFO("point " << x);
+    REQUIRE(full.size() == 1);
+    REQUIRE(fast.size() == 1);
+    CHECK(full[0].dimension == c.dim);
+    CHECK(fast[0].dimension == c.dim);
+    CHECK(full[0].t_in == 0.0);
+    CHECK(full[0].t_out == 1.0);
+    CHECK(walk.locate(x).dimension == c.dim);
+  }
+}
+
+TEST_CASE("segment walk: a single cube, hand-checked sequences", "[segment_walk]") {
+  const Mesh_tr tr = build(make_kuhn_grid(1, 1, 1, [](int, int, int) { return true; }));
+  const Mesh_walk walk(tr, Is_tet_mesh_domain_cell());
+  std::vector<Segment_walk_piece_3<Mesh_tr>> w;
+  // Along the main diagonal, an edge of all 6 tets, from outside to outside.
+  check_segment(tr, walk, Mesh_tr::Point(-1, -1, -1), Mesh_tr::Point(2, 2, 2), true, &w);
+  REQUIRE(w.size() == 5);
+  CHECK(w[0].dimension == -1);
+  CHECK(w[1].dimension == 0);
+  CHECK(w[2].dimension == 1);
+  CHECK(w[3].dimension == 0);
+  CHECK(w[4].dimension == -1);
+  CHECK(w[1].t_in == Approx(1.0 / 3));
+  CHECK(w[3].t_in == Approx(2.0 / 3));
+  // In the plane z = 0 (a boundary face), across the face diagonal (0,0,0)-(1,1,0).
+  check_segment(tr, walk, Mesh_tr::Point(0.75, 0.25, 0), Mesh_tr::Point(0.25, 0.75, 0), true, &w);
+  REQUIRE(w.size() == 3);
+  CHECK(w[0].dimension == 2);
+  CHECK(w[1].dimension == 1);
+  CHECK(w[2].dimension == 2);
+  CHECK(w[1].t_in == Approx(0.5));
+  // Ending exactly at a vertex, starting inside.
+  check_segment(tr, walk, Mesh_tr::Point(0.5, 0.25, 0.125), Mesh_tr::Point(1, 0, 0), true, &w);
+  CHECK(w.back().dimension == 0);
+  CHECK(w.back().t_in == 1.0);
+  // Segment outside, missing the cube: one gap.
+  check_segment(tr, walk, Mesh_tr::Point(2, 0, 0), Mesh_tr::Point(2, 3, 1), true, &w);
+  REQUIRE(w.size() == 1);
+  CHECK(w[0].dimension == -1);
+  // Touching the cube at a vertex only: gap, vertex, gap.
+  check_segment(tr, walk, Mesh_tr::Point(2, 0, 0), Mesh_tr::Point(0, 2, 0), true, &w);
+  REQUIRE(w.size() == 3);
+  CHECK(w[1].dimension == 0);
+  CHECK(w[1].t_in == Approx(0.5));
+  // Grazing along a boundary edge: gap, vertex, edge, vertex, gap.
+  check_segment(tr, walk, Mesh_tr::Point(-1, 0, 0), Mesh_tr::Point(2, 0, 0), true, &w);
+  REQUIRE(w.size() == 5);
+  CHECK(w[2].dimension == 1);
+}
+
+TEST_CASE("segment walk: L-shape, the segment leaves and re-enters", "[segment_walk]") {
+  const Mesh_tr tr = build(make_kuhn_grid(2, 2, 1, [](int i, int j, int) { return !(i == 1 && j == 1); }));
+  const Mesh_walk walk(tr, Is_tet_mesh_domain_cell());
+  std::vector<Segment_walk_piece_3<Mesh_tr>> w;
+  check_segment(tr, walk, Mesh_tr::Point(0.5, 1.75, 0.5), Mesh_tr::Point(1.75, 0.5, 0.5), true, &w);
+  REQUIRE(count_dim(w, -1) == 1);
+  const auto g = std::find_if(w.begin(), w.end(), [](const auto& x) { return x.dimension == -1; });
+  CHECK(g->t_in == Approx(0.4));
+  CHECK(g->t_out == Approx(0.6));
+  CHECK(std::prev(g)->dimension == 2);
+  CHECK(std::next(g)->dimension == 2);
+  // Through the re-entrant edge x = y = 1: no gap, an edge crossing.
+  check_segment(tr, walk, Mesh_tr::Point(0.5, 1.5, 0.25), Mesh_tr::Point(1.5, 0.5, 0.75), true, &w);
+  CHECK(count_dim(w, -1) == 0);
+  CHECK(std::count_if(w.begin(), w.end(), [](const auto& x) { return x.dimension == 1 && x.t_in == Approx(0.5); }) == 1);
+  // Along the re-entrant edge, from outside: gap, vertex, edge, vertex, gap.
+  check_segment(tr, walk, Mesh_tr::Point(1, 1, -1), Mesh_tr::Point(1, 1, 2), true, &w);
+  REQUIRE(w.size() == 5);
+  CHECK(w[2].dimension == 1);
+  // Starting in the notch, ending in the domain.
+  check_segment(tr, walk, Mesh_tr::Point(1.5, 1.5, 0.5), Mesh_tr::Point(0.2, 0.3, 0.45), true, &w);
+  CHECK(w.front().dimension == -1);
+  CHECK(w.back().dimension == 3);
+}
+
+TEST_CASE("segment walk: grid with a tunnel, several gaps", "[segment_walk]") {
+  // 5 x 3 x 3 cubes; the middle column (j = 1, k = 1) is removed for 1 <= i <= 3,
+  // and the slab i = 2 keeps only its border ring: the tunnel crosses it.
+  const auto keep = [](int i, int j, int k) { return !(j == 1 && k == 1 && i >= 1 && i <= 3); };
+  const Mesh_tr tr = build(make_kuhn_grid(5, 3, 3, keep));
+  const Mesh_walk walk(tr, Is_tet_mesh_domain_cell());
+  std::vector<Segment_walk_piece_3<Mesh_tr>> w;
+  // Across the tunnel, perpendicular to it.
+  check_segment(tr, walk, Mesh_tr::Point(2.3, 0.2, 1.4), Mesh_tr::Point(2.6, 2.9, 1.6), true, &w);
+  CHECK(count_dim(w, -1) == 1);
+  // Through the tunnel, entering the domain at both ends.
+  check_segment(tr, walk, Mesh_tr::Point(0.5, 1.4, 1.6), Mesh_tr::Point(4.5, 1.6, 1.3), true, &w);
+  CHECK(count_dim(w, -1) == 1);
+  // In and out of the whole grid, crossing the tunnel twice-removed slabs.
+  check_segment(tr, walk, Mesh_tr::Point(-1, 1.5, 1.5), Mesh_tr::Point(6, 1.5, 1.5), true, &w);
+  CHECK(count_dim(w, -1) == 3);
+  // Zig-zag outside and inside the grid.
+  check_segment(tr, walk, Mesh_tr::Point(2.5, -1, 1.5), Mesh_tr::Point(2.5, 4, 1.5), true, &w);
+  CHECK(count_dim(w, -1) == 3);
+}
+
+TEST_CASE("segment walk: components touching along an edge and at a vertex", "[segment_walk]") {
+  {
+    const Mesh_tr tr = build(make_kuhn_grid(2, 2, 1, [](int i, int j, int) { return i == j; }));
+    const Mesh_walk walk(tr, Is_tet_mesh_domain_cell());
+    std::vector<Segment_walk_piece_3<Mesh_tr>> w;
+    check_segment(tr, walk, Mesh_tr::Point(0.5, 0.5, 0.2), Mesh_tr::Point(1.5, 1.5, 0.8), true, &w);
+    CHECK(count_dim(w, -1) == 0);
+    // Across the shared edge from the outside: gap, edge, gap.
+    check_segment(tr, walk, Mesh_tr::Point(0.5, 1.5, 0.5), Mesh_tr::Point(1.5, 0.5, 0.5), true, &w);
+    REQUIRE(w.size() == 3);
+    CHECK(w[1].dimension == 1);
+  }
+  {
+    const Mesh_tr tr = build(make_kuhn_grid(2, 2, 2, [](int i, int j, int k) { return i == j && j == k; }));
+    const Mesh_walk walk(tr, Is_tet_mesh_domain_cell());
+    std::vector<Segment_walk_piece_3<Mesh_tr>> w;
+    // Along the main diagonal through the touching vertex: edge, vertex, edge.
+    check_segment(tr, walk, Mesh_tr::Point(0.5, 0.5, 0.5), Mesh_tr::Point(1.5, 1.5, 1.5), true, &w);
+    REQUIRE(w.size() == 3);
+    CHECK(w[0].dimension == 1);
+    CHECK(w[1].dimension == 0);
+    CHECK(w[2].dimension == 1);
+    // Through the touching vertex off the diagonal: no gap.
+    check_segment(tr, walk, Mesh_tr::Point(0.5, 0.625, 0.75), Mesh_tr::Point(1.5, 1.375, 1.25), true, &w);
+    CHECK(count_dim(w, -1) == 0);
+    CHECK(count_dim(w, 0) == 1);
+    // The same in the other direction (the vertex star is searched from the second component).
+    check_segment(tr, walk, Mesh_tr::Point(1.5, 1.375, 1.25), Mesh_tr::Point(0.5, 0.625, 0.75), true, &w);
+    CHECK(count_dim(w, -1) == 0);
+    CHECK(count_dim(w, 0) == 1);
+    // Along a cube edge of the second component, through the touching vertex,
+    // then along a cube edge of the first one: edge, vertex, edge.
+    check_segment(tr, walk, Mesh_tr::Point(1.5, 1, 1), Mesh_tr::Point(0.5, 1, 1), true, &w);
+    REQUIRE(w.size() == 3);
+    CHECK(w[1].dimension == 0);
+    CHECK(w[2].dimension == 1);
+    // Starting at the touching vertex, into the second component.
+    check_segment(tr, walk, Mesh_tr::Point(1, 1, 1), Mesh_tr::Point(1.5, 1.375, 1.25), true, &w);
+    CHECK(w.front().dimension == 0);
+    CHECK(w.back().dimension == 3);
+  }
+}
+
+TEST_CASE("segment walk: thousands of exactly degenerate segments on Kuhn grids", "[segment_walk]") {
+  std::mt19937 rng(12345);
+  const int n = 4;
+  const double s = 12.0; // midpoints and centroids of grid simplices are integers
+  for (int mesh = 0; mesh < 3; ++mesh) {
+    std::uniform_real_distribution<double> u01(0, 1);
+    std::vector<char> kept(n * n * n);
+    for (auto& k : kept) k = mesh == 0 ? 1 : (u01(rng) < 0.7);
+    kept[0] = 1;
+    const Mesh_tr tr = build(make_kuhn_grid(n, n, n, [&](int i, int j, int k) { return kept[(i * n + j) * n + k] != 0; }, s));
+    const Mesh_walk walk(tr, Is_tet_mesh_domain_cell());
+    // Special points: vertices, edge midpoints, facet and cell centroids of the
+    // mesh simplices, and integer points inside and around the grid.
+    std::vector<Mesh_tr::Point> pts;
+    for (auto c : tr.finite_cell_handles()) {
+      if (!c->info().in_domain()) continue;
+      const Mesh_tr::Point* v[4] = {&c->vertex(0)->point(), &c->vertex(1)->point(), &c->vertex(2)->point(), &c->vertex(3)->point()};
+      pts.push_back(*v[0]);
+      for (int a = 0; a < 4; ++a)
+        for (int b = a + 1; b < 4; ++b) pts.push_back(CGAL::midpoint(*v[a], *v[b]));
+      for (int a = 0; a < 4; ++a) {
+        double x = 0, y = 0, z = 0;
+        for (int b = 0; b < 4; ++b)
+          if (b != a) x += v[b]->x() / 3, y += v[b]->y() / 3, z += v[b]->z() / 3;
+        pts.push_back(Mesh_tr::Point(std::round(x), std::round(y), std::round(z)));
+      }
+      pts.push_back(CGAL::centroid(*v[0], *v[1], *v[2], *v[3]));
+    }
+    std::uniform_int_distribution<int> coord(-6, int(n * s) + 6);
+    for (int i = 0; i < 200; ++i) pts.push_back(Mesh_tr::Point(coord(rng), coord(rng), coord(rng)));
+    std::uniform_int_distribution<std::size_t> pick(0, pts.size() - 1);
+    const int segments = mesh == 0 ? 2500 : 1500;
+    for (int i = 0; i < segments; ++i) {
+      const Mesh_tr::Point q = pts[pick(rng)];
+      Mesh_tr::Point p = pts[pick(rng)];
+      if (i % 10 == 0) p = q;
+      check_segment(tr, walk, q, p, i % 5 == 0);
+    }
+    // Segments along grid lines and face/cube diagonals, through many vertices.
+    std::uniform_int_distribution<int> g(-1, n + 1);
+    for (int i = 0; i < 500; ++i) {
+      const int a[3] = {g(rng), g(rng), g(rng)};
+      int d[3] = {g(rng) % 2, g(rng) % 2, g(rng) % 2};
+      if (d[0] == 0 && d[1] == 0 && d[2] == 0) d[0] = 1;
+      const int len = 1 + i % (n + 2);
+      const Mesh_tr::Point q(a[0] * s, a[1] * s, a[2] * s), p((a[0] + len * d[0]) * s, (a[1] + len * d[1]) * s, (a[2] + len * d[2]) * s);
+      check_segment(tr, walk, q, p, false);
+    }
+  }
+}
+
+TEST_CASE("segment walk: Delaunay of random points, against CGAL's traverser on generic segments", "[segment_walk]") {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<DT::Point> pts;
+  for (int i = 0; i < 3000; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
+  DT dt(pts.begin(), pts.end());
+  const Segment_walk_3<DT> walk(dt);
+  std::size_t compared = 0;
+  for (int i = 0; i < 1000; ++i) {
+    const DT::Point q(u(rng), u(rng), u(rng));
+    const DT::Point p = i % 3 == 0 ? DT::Point(2 * u(rng) - 0.5, 2 * u(rng) - 0.5, 2 * u(rng) - 0.5) : DT::Point(u(rng), u(rng), u(rng));
+    std::vector<Segment_walk_piece_3<DT>> full;
+    check_segment(dt, walk, q, p, i % 10 == 0, &full);
+    // Random segments between points inside the hull are generic: CGAL's
+    // traverser is reliable there, and must visit the same cells.
+    DT::Locate_type lq, lp;
+    int li, lj;
+    dt.locate(q, lq, li, lj);
+    dt.locate(p, lp, li, lj);
+    if (lq != DT::CELL || lp != DT::CELL) continue;
+    std::vector<DT::Cell_handle> ours, cgal;
+    for (const auto& x : full)
+      if (x.dimension == 3) ours.push_back(x.cell);
+    for (DT::Cell_handle c : dt.segment_traverser_cell_handles(q, p)) cgal.push_back(c);
+    CHECK(ours == cgal);
+    ++compared;
+  }
+  CHECK(compared > 500);
+  // Segments between vertices of the triangulation: degenerate at both ends.
+  std::vector<DT::Vertex_handle> vs;
+  for (auto v : dt.finite_vertex_handles()) vs.push_back(v);
+  std::uniform_int_distribution<std::size_t> pick(0, vs.size() - 1);
+  for (int i = 0; i < 300; ++i) check_segment(dt, walk, vs[pick(rng)]->point(), vs[pick(rng)]->point(), i % 10 == 0);
+}
+
+TEST_CASE("segment walk: Delaunay with an excluded pocket", "[segment_walk]") {
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<DT::Point> pts;
+  for (int i = 0; i < 2000; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
+  DT dt(pts.begin(), pts.end());
+  // Domain: finite cells whose centroid is outside a ball: a cavity inside.
+  const auto in_domain = [&dt](DT::Cell_handle c) {
+    if (dt.is_infinite(c)) return false;
+    const DT::Point g = CGAL::centroid(c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(), c->vertex(3)->point());
+    return CGAL::squared_distance(g, DT::Point(0.5, 0.5, 0.5)) > 0.3 * 0.3;
+  };
+  using Walk = Segment_walk_3<DT, decltype(in_domain)>;
+  const Walk walk(dt, in_domain);
+  int with_gap = 0;
+  for (int i = 0; i < 400; ++i) {
+    const DT::Point q(u(rng), u(rng), 0.05 + 0.1 * u(rng)), p(u(rng), u(rng), 0.85 + 0.1 * u(rng));
+    std::vector<Segment_walk_piece_3<DT>> full;
+    check_segment(dt, walk, q, p, true, &full);
+    for (const auto& x : full)
+      if (x.dimension == -1) {
+        ++with_gap;
+        break;
+      }
+  }
+  CHECK(with_gap > 50);
+
+  // An empty domain: every segment is one gap, every point outside.
+  const auto none = [](DT::Cell_handle) { return false; };
+  const Segment_walk_3<DT, decltype(none)> empty(dt, none);
+  std::vector<Segment_walk_piece_3<DT>> w;
+  empty(DT::Point(0.2, 0.2, 0.2), DT::Point(0.8, 0.7, 0.6), std::back_inserter(w));
+  REQUIRE(w.size() == 1);
+  CHECK(w[0].dimension == -1);
+  CHECK(w[0].t_in == 0.0);
+  CHECK(w[0].t_out == 1.0);
+  CHECK(empty.locate(DT::Point(0.5, 0.5, 0.5)).dimension == -1);
+}
+
+TEST_CASE("segment walk: hints, point locator, concurrent use of one walker", "[segment_walk]") {
+  // A tunnel grid: the lazy structures (boundary AABB tree, vertex stars,
+  // location grid) are built on first use, here by two threads at once.
+  const auto keep = [](int i, int j, int k) { return !(j == 1 && k == 1 && i >= 1 && i <= 2) && !(i == 0 && j == 2); };
+  const Mesh_tr tr = build(make_kuhn_grid(4, 3, 3, keep, 12.0));
+  const Mesh_walk walk(tr, Is_tet_mesh_domain_cell());
+  std::vector<Mesh_tr::Cell_handle> cells;
+  for (auto c : tr.finite_cell_handles()) cells.push_back(c);
+  std::vector<std::pair<Mesh_tr::Point, Mesh_tr::Point>> segs;
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> coord(-6, 54);
+  for (int i = 0; i < 400; ++i)
+    segs.push_back({Mesh_tr::Point(coord(rng), coord(rng), coord(rng)), Mesh_tr::Point(coord(rng), coord(rng), coord(rng))});
+  using Out = std::vector<std::vector<Segment_walk_piece_3<Mesh_tr>>>;
+  Out a(segs.size()), b(segs.size());
+  auto run = [&](Out& out, int which) {
+    for (std::size_t i = 0; i < segs.size(); ++i) {
+      if (which == 0) walk(segs[i].first, segs[i].second, std::back_inserter(out[i]));
+      else walk(segs[i].first, segs[i].second, std::back_inserter(out[i]), cells[(i * 7919) % cells.size()]);
+    }
+  };
+  std::thread t1(run, std::ref(a), 0), t2(run, std::ref(b), 1);
+  t1.join();
+  t2.join();
+  std::size_t same = 0;
+  for (std::size_t i = 0; i < segs.size(); ++i) {
+    bool eq = a[i].size() == b[i].size();
+    for (std::size_t k = 0; eq && k < a[i].size(); ++k)
+      eq = a[i][k].dimension == b[i][k].dimension && vset(a[i][k]) == vset(b[i][k]) && a[i][k].t_in == b[i][k].t_in &&
+           a[i][k].t_out == b[i][k].t_out;
+    same += eq;
+    if (i % 20 == 0) check_segment(tr, walk, segs[i].first, segs[i].second);
+  }
+  CHECK(same == segs.size()); // the hint changes nothing but the speed
+
+  const Point_locator_3<Mesh_tr, Is_tet_mesh_domain_cell> locate(tr, Is_tet_mesh_domain_cell());
+  CHECK(locate(Mesh_tr::Point(0, 0, 0)).dimension == 0);
+  CHECK(locate(Mesh_tr::Point(6, 0, 0)).dimension == 1);
+  CHECK(locate(Mesh_tr::Point(18, 18, 18)).dimension == -1); // in the tunnel
+  CHECK(locate(Mesh_tr::Point(6, 30, 18)).dimension == -1);  // in the removed column
+  CHECK(locate(Mesh_tr::Point(9, 6, 3), cells.back()).dimension == 3);
+  const auto l = locate(Mesh_tr::Point(8, 4, 0));
+  REQUIRE(l.dimension == 2);
+  CHECK(l.cell->info().in_domain());
+}
