@@ -1,0 +1,443 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+// Metric tensors (validation, square root) and the piecewise-linear metric
+// field on a tet mesh: interpolation of A, curl per cell, connection,
+// caching and threads, property maps, input errors.
+#include <CGAL_ext/Cell_transport_3.h>
+#include <CGAL_ext/Connection_3.h>
+#include <CGAL_ext/Input_error.h>
+#include <CGAL_ext/Metric_field_3.h>
+#include <CGAL_ext/Metric_tensor.h>
+#include <CGAL_ext/build_triangulation_from_tets.h>
+
+#include <catch2/catch.hpp>
+
+#include <Eigen/Geometry>
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Tr = CGAL_ext::Tet_mesh_triangulation_3<K>;
+using Field = CGAL_ext::Metric_field_3<Tr>;
+using Point = Tr::Point;
+using M3 = Eigen::Matrix3d;
+using V3 = Eigen::Vector3d;
+
+struct Random {
+  std::mt19937 rng;
+  explicit Random(unsigned seed) : rng(seed) {}
+  double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
+  M3 spd(double lo, double hi) {
+    Eigen::Quaterniond q(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
+    const M3 Q = q.normalized().toRotationMatrix();
+    V3 l;
+    for (int i = 0; i < 3; ++i) l(i) = std::exp(uniform(std::log(lo), std::log(hi)));
+    return Q * l.asDiagonal() * Q.transpose();
+  }
+};
+
+struct Mesh {
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::array<std::size_t, 4>> tets;
+};
+
+// The unit cube cut into n^3 cubes, each into 6 Kuhn tets around its main diagonal.
+Mesh kuhn_grid(int n) {
+  Mesh m;
+  auto id = [n](int i, int j, int k) { return static_cast<std::size_t>((k * (n + 1) + j) * (n + 1) + i); };
+  for (int k = 0; k <= n; ++k)
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) m.points.push_back({double(i) / n, double(j) / n, double(k) / n});
+  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        for (const auto& p : perms) {
+          std::array<int, 3> c{i, j, k};
+          std::array<std::size_t, 4> t;
+          t[0] = id(c[0], c[1], c[2]);
+          for (int s = 0; s < 3; ++s) {
+            ++c[p[s]];
+            t[s + 1] = id(c[0], c[1], c[2]);
+          }
+          m.tets.push_back(t);
+        }
+  return m;
+}
+
+V3 vec(const Point& p) { return V3(p.x(), p.y(), p.z()); }
+
+// A field whose A is exactly linear in space: A(x) = A0 + x B0 + y B1 + z B2
+// (symmetric, SPD on the unit cube), and its exact curl.
+struct Linear_A {
+  M3 A0;
+  std::array<M3, 3> B;
+  M3 A(const V3& x) const { return A0 + x(0) * B[0] + x(1) * B[1] + x(2) * B[2]; }
+  M3 curl() const {
+    M3 c;
+    for (int i = 0; i < 3; ++i)
+      c.col(i) = V3(B[1](2, i) - B[2](1, i), B[2](0, i) - B[0](2, i), B[0](1, i) - B[1](0, i));
+    return c;
+  }
+};
+
+Linear_A random_linear_A(Random& r) {
+  Linear_A f;
+  f.A0 = 2 * M3::Identity();
+  for (M3& b : f.B) {
+    M3 m;
+    for (int i = 0; i < 9; ++i) m.data()[i] = r.uniform(-0.3, 0.3);
+    b = m + m.transpose();
+  }
+  return f;
+}
+
+} // namespace
+
+TEST_CASE("check_metric_tensor names what is wrong", "[metric]") {
+  using CGAL_ext::check_metric_tensor;
+  CHECK(check_metric_tensor(M3::Identity()).empty());
+  M3 g = M3::Identity();
+  g(1, 2) = g(2, 1) = 0.3;
+  CHECK(check_metric_tensor(g).empty());
+  M3 nan = g;
+  nan(0, 1) = std::numeric_limits<double>::quiet_NaN();
+  CHECK(check_metric_tensor(nan).find("non-finite") != std::string::npos);
+  M3 inf = g;
+  inf(2, 2) = std::numeric_limits<double>::infinity();
+  CHECK(check_metric_tensor(inf).find("non-finite") != std::string::npos);
+  M3 asym = g;
+  asym(0, 1) = 1e-9; // g(1,0) == 0
+  CHECK(check_metric_tensor(asym).find("not symmetric") != std::string::npos);
+  M3 nearly = g;
+  nearly(0, 1) = 1e-14; // within the relative 1e-12
+  CHECK(check_metric_tensor(nearly).empty());
+  CHECK(check_metric_tensor(V3(1, -1, 1).asDiagonal().toDenseMatrix()).find("not positive definite") != std::string::npos);
+  CHECK(check_metric_tensor(V3(1, 0, 1).asDiagonal().toDenseMatrix()).find("not positive definite") != std::string::npos);
+  CHECK(check_metric_tensor(M3::Zero()).find("not positive definite") != std::string::npos);
+  CHECK(check_metric_tensor(V3(1, 1e-15, 1).asDiagonal().toDenseMatrix()).find("condition") != std::string::npos);
+  CHECK(check_metric_tensor(V3(1, 1e-13, 1).asDiagonal().toDenseMatrix()).empty());
+}
+
+TEST_CASE("sqrt_spd is the symmetric positive-definite root", "[metric]") {
+  Random r(21);
+  for (int k = 0; k < 100; ++k) {
+    const M3 g = r.spd(1e-4, 1e4);
+    const M3 A = CGAL_ext::sqrt_spd(g);
+    CHECK(A == A.transpose()); // exactly symmetric
+    CHECK((A * A - g).norm() <= 1e-12 * g.norm());
+    CHECK(Eigen::SelfAdjointEigenSolver<M3>(A).eigenvalues().minCoeff() > 0);
+  }
+  CHECK((CGAL_ext::sqrt_spd(V3(4, 9, 16).asDiagonal().toDenseMatrix()) - V3(2, 3, 4).asDiagonal().toDenseMatrix())
+            .norm() <= 1e-15);
+}
+
+TEST_CASE("A is interpolated linearly and the curl matches MATH.md section 2", "[metric_field]") {
+  Random r(22);
+  const Mesh m = kuhn_grid(2);
+  Tr tr;
+  CGAL_ext::build_triangulation_from_tets(m.points, m.tets, {}, tr);
+  std::vector<M3> g(m.points.size());
+  for (M3& x : g) x = r.spd(0.2, 5);
+  const Field field(tr, g);
+  REQUIRE(field.number_of_domain_cells() == m.tets.size());
+  for (auto v : tr.finite_vertex_handles())
+    CHECK((field.metric(v) - g[v->info()]).norm() <= 1e-12 * g[v->info()].norm());
+  for (auto c : tr.finite_cell_handles()) {
+    // Independent formula: lambda = T [x; 1] with T the inverse of the 4x4
+    // matrix of homogeneous vertex coordinates, d_k A = sum_v T[v][k] A_v.
+    Eigen::Matrix4d P;
+    std::array<M3, 4> Av;
+    for (int v = 0; v < 4; ++v) {
+      P.col(v) << vec(c->vertex(v)->point()), 1;
+      Av[v] = field.sqrt_metric(c->vertex(v));
+    }
+    const Eigen::Matrix4d T = P.inverse();
+    std::array<M3, 3> dA;
+    for (int k = 0; k < 3; ++k) {
+      dA[k].setZero();
+      for (int v = 0; v < 4; ++v) dA[k] += T(v, k) * Av[v];
+    }
+    M3 curl;
+    for (int i = 0; i < 3; ++i)
+      curl.col(i) = V3(dA[1](2, i) - dA[2](1, i), dA[2](0, i) - dA[0](2, i), dA[0](1, i) - dA[1](0, i));
+    CHECK((field.curl(c) - curl).norm() <= 1e-12 * (1 + curl.norm()));
+
+    // At the vertices, A_at is the vertex value; inside, the barycentric mean.
+    for (int v = 0; v < 4; ++v) CHECK((field.A_at(c, c->vertex(v)->point()) - Av[v]).norm() <= 1e-14 * Av[v].norm());
+    const std::array<double, 4> l{0.1, 0.2, 0.3, 0.4};
+    V3 x = V3::Zero();
+    M3 Ax = M3::Zero();
+    for (int v = 0; v < 4; ++v) {
+      x += l[v] * vec(c->vertex(v)->point());
+      Ax += l[v] * Av[v];
+    }
+    const Point px(x(0), x(1), x(2));
+    CHECK((field.A_at(c, px) - Ax).norm() <= 1e-14 * Ax.norm());
+    const Eigen::Vector4d bl = field.barycentric_coordinates(c, px);
+    CHECK((bl - Eigen::Vector4d(l[0], l[1], l[2], l[3])).norm() <= 1e-14);
+    // The connection at the point is the closed form at A(x).
+    CHECK((field.connection(c, px) - CGAL_ext::connection_one_form_by_solve(Ax, curl)).norm() <=
+          1e-10 * (1 + field.connection(c, px).norm()));
+  }
+}
+
+TEST_CASE("an exactly linear A is reproduced, with its exact curl in every cell", "[metric_field]") {
+  Random r(23);
+  const Linear_A lin = random_linear_A(r);
+  const Mesh m = kuhn_grid(3);
+  // A must be SPD at the cube's corners (then everywhere in it, A being linear),
+  // or the root of A^2 would not give A back.
+  for (double x : {0.0, 1.0})
+    for (double y : {0.0, 1.0})
+      for (double z : {0.0, 1.0})
+        REQUIRE(Eigen::SelfAdjointEigenSolver<M3>(lin.A(V3(x, y, z))).eigenvalues().minCoeff() > 0.1);
+  Tr tr;
+  CGAL_ext::build_triangulation_from_tets(m.points, m.tets, {}, tr);
+  // g = A(x)^2 at the vertices, through the callable constructor.
+  const Field field(tr, [&](const Point& p) -> M3 {
+    const M3 A = lin.A(vec(p));
+    return A * A;
+  });
+  const M3 exact = lin.curl();
+  REQUIRE(exact.norm() > 0.1);
+  for (auto c : tr.finite_cell_handles()) {
+    CHECK((field.curl(c) - exact).norm() <= 1e-12);
+    const V3 centroid = 0.25 * (vec(c->vertex(0)->point()) + vec(c->vertex(1)->point()) + vec(c->vertex(2)->point()) +
+                                vec(c->vertex(3)->point()));
+    CHECK((field.A_at(c, Point(centroid(0), centroid(1), centroid(2))) - lin.A(centroid)).norm() <= 1e-13);
+  }
+}
+
+TEST_CASE("a constant metric field has zero curl, zero connection and identity transport, exactly",
+          "[metric_field]") {
+  Random r(24);
+  const Mesh m = kuhn_grid(2);
+  Tr tr;
+  CGAL_ext::build_triangulation_from_tets(m.points, m.tets, {}, tr);
+  const M3 g = r.spd(0.1, 10);
+  const Field field(tr, g);
+  for (auto c : tr.finite_cell_handles()) {
+    CHECK(field.curl(c) == M3::Zero());
+    const Point a = CGAL::centroid(c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(),
+                                   c->vertex(3)->point());
+    const Point b = CGAL::midpoint(c->vertex(0)->point(), c->vertex(2)->point());
+    CHECK(field.connection(c, a) == M3::Zero());
+    for (CGAL_ext::Transport_scheme s : {CGAL_ext::Transport_scheme::trapezoid, CGAL_ext::Transport_scheme::magnus}) {
+      CGAL_ext::Transport_options opt;
+      opt.scheme = s;
+      CHECK(CGAL_ext::cell_transport(field, c, a, b, opt).rotation == M3::Identity());
+    }
+  }
+}
+
+TEST_CASE("transport through the field matches the transport from vertex data", "[metric_field]") {
+  Random r(25);
+  const std::vector<std::array<double, 3>> pts{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const std::vector<std::array<std::size_t, 4>> tets{{0, 1, 2, 3}};
+  Tr tr;
+  CGAL_ext::build_triangulation_from_tets(pts, tets, {}, tr);
+  std::vector<M3> g(4);
+  for (M3& x : g) x = r.spd(0.2, 5);
+  const Field field(tr, g);
+  const auto c = *tr.finite_cell_handles().begin();
+  const Point a(0.1, 0.1, 0.1), b(0.5, 0.2, 0.25);
+  const CGAL_ext::Transport_result res = CGAL_ext::cell_transport(field, c, a, b);
+  // Same thing by hand: A at a and b from the vertex roots (the unit tet's
+  // barycentric coordinates are (1-x-y-z, x, y, z)).
+  auto A_of = [&](const Point& p) -> M3 { // a matrix, not an expression of temporaries
+    return (1 - p.x() - p.y() - p.z()) * CGAL_ext::sqrt_spd(g[0]) + p.x() * CGAL_ext::sqrt_spd(g[1]) +
+           p.y() * CGAL_ext::sqrt_spd(g[2]) + p.z() * CGAL_ext::sqrt_spd(g[3]);
+  };
+  const CGAL_ext::Transport_result ref =
+      CGAL_ext::cell_transport(A_of(a), A_of(b), field.curl(c), vec(b) - vec(a));
+  CHECK(CGAL_ext::rotation_angle(res.rotation.transpose() * ref.rotation) <= 1e-12);
+  CHECK(CGAL_ext::rotation_angle(res.rotation) > 1e-3); // a real rotation
+}
+
+TEST_CASE("precompute and concurrent lazy evaluation give the same bits", "[metric_field]") {
+  Random r(26);
+  const Mesh m = kuhn_grid(4);
+  Tr tr;
+  CGAL_ext::build_triangulation_from_tets(m.points, m.tets, {}, tr);
+  std::vector<M3> g(m.points.size());
+  for (M3& x : g) x = r.spd(0.2, 5);
+  const Field sequential(tr, g), pre(tr, g), lazy(tr, g);
+  pre.precompute();
+  std::vector<Tr::Cell_handle> cells(tr.finite_cell_handles().begin(), tr.finite_cell_handles().end());
+  std::shuffle(cells.begin(), cells.end(), r.rng);
+  std::vector<M3> from_threads(cells.size());
+  tbb::parallel_for(std::size_t(0), cells.size(), [&](std::size_t i) {
+    // Several threads ask for the same cells at the same time.
+    from_threads[i] = lazy.curl(cells[i]);
+    (void)lazy.curl(cells[(i * 7919) % cells.size()]);
+  });
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    CHECK(sequential.curl(cells[i]) == pre.curl(cells[i]));
+    CHECK(from_threads[i] == sequential.curl(cells[i]));
+  }
+}
+
+TEST_CASE("property maps and set_metric", "[metric_field]") {
+  Random r(27);
+  const Mesh m = kuhn_grid(1);
+  Tr tr;
+  CGAL_ext::build_triangulation_from_tets(m.points, m.tets, {}, tr);
+  std::vector<M3> g(m.points.size());
+  for (M3& x : g) x = r.spd(0.2, 5);
+  Field field(tr, g);
+  const auto roots = field.sqrt_metric_map();
+  for (auto v : tr.finite_vertex_handles()) CHECK(&get(roots, v) == &field.sqrt_metric(v));
+
+  // Change one vertex through the read-write map: the cached curls of its
+  // cells must follow, and equal those of a field built with the new data.
+  field.precompute();
+  auto v = *tr.finite_vertex_handles().begin();
+  const M3 new_g = r.spd(0.2, 5);
+  auto metrics = field.metric_map();
+  put(metrics, v, new_g);
+  CHECK((get(metrics, v) - new_g).norm() <= 1e-12 * new_g.norm());
+  g[v->info()] = new_g;
+  const Field rebuilt(tr, g);
+  for (auto c : tr.finite_cell_handles()) CHECK(field.curl(c) == rebuilt.curl(c));
+
+  M3 bad = M3::Identity();
+  bad(1, 1) = -1;
+  try {
+    put(metrics, v, bad);
+    FAIL("no exception");
+  } catch (const CGAL_ext::Input_error& e) {
+    CHECK(e.element() == "vertex " + std::to_string(v->info() + 1));
+  }
+}
+
+TEST_CASE("bad metrics are input errors that name the vertex", "[metric_field]") {
+  const Mesh m = kuhn_grid(1);
+  Tr tr;
+  CGAL_ext::build_triangulation_from_tets(m.points, m.tets, {}, tr);
+  std::vector<M3> g(m.points.size(), M3::Identity());
+
+  auto expect_error = [&](const std::vector<M3>& metrics, const std::string& element, const std::string& words) {
+    try {
+      Field f(tr, metrics, "metric.sol");
+      FAIL("no exception");
+    } catch (const CGAL_ext::Input_error& e) {
+      CHECK(e.element() == element);
+      CHECK(e.file() == "metric.sol");
+      CHECK(e.problem().find(words) != std::string::npos);
+    }
+  };
+  std::vector<M3> bad = g;
+  bad[2](0, 0) = -3;
+  expect_error(bad, "vertex 3", "not positive definite");
+  bad = g;
+  bad[5](1, 2) = std::numeric_limits<double>::quiet_NaN();
+  expect_error(bad, "vertex 6", "non-finite");
+  bad = g;
+  bad[0](0, 1) = 0.5; // not symmetric
+  expect_error(bad, "vertex 1", "not symmetric");
+  bad = g;
+  bad.pop_back();
+  expect_error(bad, "vertex " + std::to_string(g.size()), "no metric");
+
+  // The callable constructor names the vertex too.
+  try {
+    Field f(tr, [](const Point& p) -> M3 { return (p.x() > 0.5 && p.y() > 0.5 ? -1.0 : 1.0) * M3::Identity(); });
+    FAIL("no exception");
+  } catch (const CGAL_ext::Input_error& e) {
+    CHECK(e.element().rfind("vertex ", 0) == 0);
+    CHECK(e.problem().find("not positive definite") != std::string::npos);
+  }
+  CHECK_THROWS_AS(Field(tr, M3::Zero().eval()), CGAL_ext::Input_error);
+}
+
+TEST_CASE("cells outside the domain are refused", "[metric_field]") {
+  const Mesh m = kuhn_grid(1);
+  Tr tr;
+  CGAL_ext::build_triangulation_from_tets(m.points, m.tets, {}, tr);
+  const Field field(tr, M3::Identity().eval());
+  Tr::Cell_handle outside;
+  for (auto c : tr.all_cell_handles())
+    if (tr.is_infinite(c)) outside = c;
+  REQUIRE(outside != Tr::Cell_handle());
+  CHECK_THROWS_AS(field.curl(outside), std::invalid_argument);
+}
+
+namespace {
+
+// MATH.md section 6: Phi = (X + 0.4 sin(Y+Z), Y + 0.3 sin(Z X), Z + 0.5 sin X), g = J^T J.
+M3 phi_jacobian(const V3& x) {
+  M3 J;
+  const double c1 = 0.4 * std::cos(x(1) + x(2)), c2 = 0.3 * std::cos(x(2) * x(0));
+  J << 1, c1, c1, c2 * x(2), 1, c2 * x(0), 0.5 * std::cos(x(0)), 0, 1;
+  return J;
+}
+M3 phi_metric(const V3& x) {
+  const M3 J = phi_jacobian(x);
+  return J.transpose() * J;
+}
+M3 phi_A(const V3& x) { return CGAL_ext::sqrt_spd(phi_metric(x)); }
+M3 phi_curl(const V3& x) { // fourth-order central differences
+  const double h = 1e-3;
+  std::array<M3, 3> d;
+  for (int k = 0; k < 3; ++k) {
+    V3 e = V3::Zero();
+    e(k) = h;
+    d[k] = (-phi_A(x + 2 * e) + 8 * phi_A(x + e) - 8 * phi_A(x - e) + phi_A(x - 2 * e)) / (12 * h);
+  }
+  M3 c;
+  for (int i = 0; i < 3; ++i)
+    c.col(i) = V3(d[1](2, i) - d[2](1, i), d[2](0, i) - d[0](2, i), d[0](1, i) - d[1](0, i));
+  return c;
+}
+
+} // namespace
+
+TEST_CASE("the PL transport in a shrinking tet converges to the smooth transport", "[metric_field]") {
+  // A tet of size eps around a = (0.1, 0.2, -0.3), g = J^T J at its vertices,
+  // a segment of length ~0.3 eps towards b = (0.9, -0.4, 0.5). The transport
+  // angle is O(eps); the PL curl is O(eps) off, so the PL transport is off by
+  // O(eps^2): halving eps must divide the error by about 4.
+  const V3 a(0.1, 0.2, -0.3), dir = (V3(0.9, -0.4, 0.5) - a).normalized();
+  const std::array<V3, 4> ref{V3(0, 0, 0), V3(1, 0, 0), V3(0, 1, 0), V3(0, 0, 1)};
+  const V3 c(0.2, 0.2, 0.2); // a's position in the reference tet
+  std::vector<double> errors, angles;
+  for (double eps : {0.2, 0.1, 0.05, 0.025}) {
+    std::vector<std::array<double, 3>> pts;
+    for (const V3& r : ref) {
+      const V3 p = a + eps * (r - c);
+      pts.push_back({p(0), p(1), p(2)});
+    }
+    Tr tr;
+    CGAL_ext::build_triangulation_from_tets(pts, {{0, 1, 2, 3}}, {}, tr);
+    const Field field(tr, [](const Point& p) { return phi_metric(vec(p)); });
+    const auto cell = *tr.finite_cell_handles().begin();
+    const V3 b = a + 0.3 * eps * dir;
+    REQUIRE(field.barycentric_coordinates(cell, Point(b(0), b(1), b(2))).minCoeff() > 0);
+    CGAL_ext::Transport_options opt;
+    opt.tolerance = 1e-13;
+    const M3 pl = CGAL_ext::cell_transport(field, cell, Point(a(0), a(1), a(2)), Point(b(0), b(1), b(2)), opt).rotation;
+    auto u = [&](double t) -> V3 {
+      const V3 x = a + t * (b - a);
+      return CGAL_ext::connection_one_form(phi_A(x), phi_curl(x)).transpose() * (b - a);
+    };
+    const M3 smooth = CGAL_ext::integrate_transport(u, opt).rotation;
+    errors.push_back(CGAL_ext::rotation_angle(pl.transpose() * smooth));
+    angles.push_back(CGAL_ext::rotation_angle(smooth));
+  }
+  for (std::size_t i = 0; i < errors.size(); ++i) {
+    INFO("eps level " << i << ": transport angle " << angles[i] << ", PL error " << errors[i]);
+    CHECK(errors[i] < 0.1 * angles[i]); // the PL field is a fair approximation
+    if (i > 0) CHECK(errors[i - 1] / errors[i] > 3.0); // second order locally
+    if (i > 0) CHECK(angles[i - 1] / angles[i] > 1.8); // and the angle is first order
+  }
+}
