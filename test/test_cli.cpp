@@ -199,3 +199,51 @@ TEST_CASE("walk: a malformed segment line is an error naming the file and the li
   CHECK(missing.exit_code == 1);
   CHECK(missing.err.find("none.txt: cannot open the file for reading") != std::string::npos);
 }
+
+TEST_CASE("metric writes a .sol from formulas, and rejects bad formulas and non-SPD values", "[cli][metric]") {
+  const std::string mesh = data_dir + "/cube_kuhn_2.mesh"; // 27 vertices, vertex 1 at the origin
+  const std::string out = (work / "metric.sol").string();
+  std::filesystem::remove(out);
+  const Run r = run("metric " + mesh + " --expr '1 + x, 0.5 * y, 16, 0, 0, 4' -o " + out);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.err.find("[summary] 27 vertices") != std::string::npos);
+  const std::string sol = slurp(out);
+  CHECK(sol.find("SolAtVertices\n27\n1 3\n1 0 16 0 0 4\n") != std::string::npos); // vertex 1 = (0, 0, 0)
+  CHECK(sol.find("\n3 0 16 0 0 4\n") != std::string::npos);                       // x = 2, y = 0
+  CHECK(sol.find("\n3 1 16 0 0 4\n") != std::string::npos);                       // x = 2, y = 2
+
+  // The output is never replaced without --force, and never the mesh.
+  const Run again = run("metric " + mesh + " --size 0.5 -o " + out);
+  CHECK(again.exit_code == 1);
+  CHECK(again.err.find("the file exists; give --force") != std::string::npos);
+  CHECK(slurp(out) == sol);
+  const Run sized = run("metric " + mesh + " --size 0.5 -o " + out + " --force");
+  REQUIRE(sized.exit_code == 0);
+  CHECK(slurp(out).find("\n1 3\n4 0 4 0 0 4\n") != std::string::npos); // g = I / 0.5^2
+  const std::string mesh_copy = file_with("copy.mesh", slurp(mesh));
+  CHECK(run("metric " + mesh_copy + " --size 1 -o " + mesh_copy + " --force").exit_code == 1);
+  CHECK(slurp(mesh_copy) == slurp(mesh));
+
+  struct Case {
+    std::string args;
+    int exit_code;
+    const char* expected;
+  };
+  const Case cases[] = {
+      {"--expr '1, 0, 1, 0, 0, sin(' -o x.sol", 2, "--expr '1, 0, 1, 0, 0, sin(': Unexpected end of expression"},
+      {"--expr '1, 0, 1' -o x.sol", 2, "expected 6 comma-separated expressions"},
+      {"--expr '1, 0, 1, 0, 0, w' -o x.sol", 2, "Unexpected token \"w\""},
+      {"--size 1 --expr '1, 0, 1, 0, 0, 1' -o x.sol", 2, "give exactly one of --expr and --size"},
+      {"--size 1", 2, "missing option -o"},
+      {"--expr '1, 2, 1, 0, 0, 1' -o x.sol", 1, "--expr at vertex 1 (0, 0, 0): the metric tensor is not positive definite"},
+      {"--expr '1, 0, 1, 0, 0, 1/(z-1)^2' -o x.sol", 1, "--expr at vertex 2 (0, 0, 1): the metric tensor has a non-finite entry"},
+      {"--size '1 - z' -o x.sol", 1, "--size at vertex 2 (0, 0, 1): the size h = 0 is not a positive finite number"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.args);
+    const Run e = run("metric " + mesh + " " + c.args);
+    CHECK(e.exit_code == c.exit_code);
+    CHECK(e.err.find(c.expected) != std::string::npos);
+    CHECK(!std::filesystem::exists("x.sol"));
+  }
+}

@@ -24,6 +24,7 @@ struct Subcommand {
 const Subcommand subcommands[] = {
     {"info", "print counts, bounding box, volume and dihedral angles of a tet mesh", CGAL_ext::cli::command_info},
     {"walk", "list every vertex, edge, facet and tet that segments meet, as JSON lines", CGAL_ext::cli::command_walk},
+    {"metric", "write a metric .sol file from formulas in x, y, z (or a constant tensor)", CGAL_ext::cli::command_metric},
 };
 
 void print_help(std::ostream& os) {
