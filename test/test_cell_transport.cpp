@@ -10,6 +10,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "test_support.h"
+
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
 
@@ -21,26 +23,13 @@
 
 namespace {
 
+using cgal_ext_test::Random;
+
 using M3 = Eigen::Matrix3d;
 using V3 = Eigen::Vector3d;
 using CGAL_ext::Transport_options;
 using CGAL_ext::Transport_scheme;
 
-struct Random {
-  std::mt19937 rng;
-  explicit Random(unsigned seed) : rng(seed) {}
-  double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
-  M3 rotation() {
-    Eigen::Quaterniond q(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
-    return q.normalized().toRotationMatrix();
-  }
-  M3 spd(double lo, double hi) {
-    V3 l;
-    for (int i = 0; i < 3; ++i) l(i) = std::exp(uniform(std::log(lo), std::log(hi)));
-    const M3 Q = rotation();
-    return Q * l.asDiagonal() * Q.transpose();
-  }
-};
 
 // A random tet with random vertex metrics, and the PL field in it, computed
 // here with the 4x4 barycentric matrix of MATH.md section 2 (independently of
@@ -240,32 +229,11 @@ TEST_CASE("reversal, composition and scale invariance", "[transport]") {
 
 namespace {
 
-// MATH.md section 6: Phi = (X + 0.4 sin(Y+Z), Y + 0.3 sin(Z X), Z + 0.5 sin X).
-M3 jacobian(const V3& x) {
-  M3 J;
-  const double c1 = 0.4 * std::cos(x(1) + x(2)), c2 = 0.3 * std::cos(x(2) * x(0));
-  J << 1, c1, c1, c2 * x(2), 1, c2 * x(0), 0.5 * std::cos(x(0)), 0, 1;
-  return J;
-}
-M3 smooth_A(const V3& x) {
-  const M3 J = jacobian(x);
-  return CGAL_ext::sqrt_spd(J.transpose() * J);
-}
-// curl of the smooth A by fourth-order central differences (error ~ h^4).
-M3 smooth_curl(const V3& x) {
-  const double h = 1e-3;
-  std::array<M3, 3> d;
-  for (int k = 0; k < 3; ++k) {
-    V3 e = V3::Zero();
-    e(k) = h;
-    d[k] = (-smooth_A(x + 2 * e) + 8 * smooth_A(x + e) - 8 * smooth_A(x - e) + smooth_A(x - 2 * e)) / (12 * h);
-  }
-  M3 c;
-  for (int i = 0; i < 3; ++i)
-    c.col(i) = V3(d[1](2, i) - d[2](1, i), d[2](0, i) - d[0](2, i), d[0](1, i) - d[1](0, i));
-  return c;
-}
-M3 polar_rotation(const V3& x) { return jacobian(x) * smooth_A(x).inverse(); }
+// MATH.md section 6 (test_support.h).
+using cgal_ext_test::flat_metric::jacobian;
+using cgal_ext_test::flat_metric::polar_rotation;
+M3 smooth_A(const V3& x) { return cgal_ext_test::flat_metric::sqrt_metric(x); }
+M3 smooth_curl(const V3& x) { return cgal_ext_test::flat_metric::curl(x); }
 
 } // namespace
 

@@ -7,6 +7,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "test_support.h"
+
 #include <Eigen/Geometry>
 
 #include <cmath>
@@ -14,30 +16,11 @@
 
 namespace {
 
+using cgal_ext_test::Random;
+
 using M3 = Eigen::Matrix3d;
 using V3 = Eigen::Vector3d;
 
-struct Random {
-  std::mt19937 rng;
-  explicit Random(unsigned seed) : rng(seed) {}
-  double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
-  M3 rotation() {
-    Eigen::Quaterniond q(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
-    return q.normalized().toRotationMatrix();
-  }
-  // SPD with eigenvalues log-uniform in [lo, hi].
-  M3 spd(double lo, double hi) {
-    V3 l;
-    for (int i = 0; i < 3; ++i) l(i) = std::exp(uniform(std::log(lo), std::log(hi)));
-    const M3 Q = rotation();
-    return Q * l.asDiagonal() * Q.transpose();
-  }
-  M3 matrix(double s) {
-    M3 m;
-    for (int i = 0; i < 9; ++i) m.data()[i] = uniform(-s, s);
-    return m;
-  }
-};
 
 } // namespace
 

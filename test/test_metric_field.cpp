@@ -12,6 +12,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "test_support.h"
+
 #include <Eigen/Geometry>
 
 #include <tbb/parallel_for.h>
@@ -25,6 +27,8 @@
 
 namespace {
 
+using cgal_ext_test::Random;
+
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Tr = CGAL_ext::Tet_mesh_triangulation_3<K>;
 using Field = CGAL_ext::Metric_field_3<Tr>;
@@ -32,18 +36,6 @@ using Point = Tr::Point;
 using M3 = Eigen::Matrix3d;
 using V3 = Eigen::Vector3d;
 
-struct Random {
-  std::mt19937 rng;
-  explicit Random(unsigned seed) : rng(seed) {}
-  double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
-  M3 spd(double lo, double hi) {
-    Eigen::Quaterniond q(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
-    const M3 Q = q.normalized().toRotationMatrix();
-    V3 l;
-    for (int i = 0; i < 3; ++i) l(i) = std::exp(uniform(std::log(lo), std::log(hi)));
-    return Q * l.asDiagonal() * Q.transpose();
-  }
-};
 
 struct Mesh {
   std::vector<std::array<double, 3>> points;
@@ -374,31 +366,11 @@ TEST_CASE("cells outside the domain are refused", "[metric_field]") {
 
 namespace {
 
-// MATH.md section 6: Phi = (X + 0.4 sin(Y+Z), Y + 0.3 sin(Z X), Z + 0.5 sin X), g = J^T J.
-M3 phi_jacobian(const V3& x) {
-  M3 J;
-  const double c1 = 0.4 * std::cos(x(1) + x(2)), c2 = 0.3 * std::cos(x(2) * x(0));
-  J << 1, c1, c1, c2 * x(2), 1, c2 * x(0), 0.5 * std::cos(x(0)), 0, 1;
-  return J;
-}
-M3 phi_metric(const V3& x) {
-  const M3 J = phi_jacobian(x);
-  return J.transpose() * J;
-}
-M3 phi_A(const V3& x) { return CGAL_ext::sqrt_spd(phi_metric(x)); }
-M3 phi_curl(const V3& x) { // fourth-order central differences
-  const double h = 1e-3;
-  std::array<M3, 3> d;
-  for (int k = 0; k < 3; ++k) {
-    V3 e = V3::Zero();
-    e(k) = h;
-    d[k] = (-phi_A(x + 2 * e) + 8 * phi_A(x + e) - 8 * phi_A(x - e) + phi_A(x - 2 * e)) / (12 * h);
-  }
-  M3 c;
-  for (int i = 0; i < 3; ++i)
-    c.col(i) = V3(d[1](2, i) - d[2](1, i), d[2](0, i) - d[0](2, i), d[0](1, i) - d[1](0, i));
-  return c;
-}
+// MATH.md section 6 (test_support.h).
+using cgal_ext_test::flat_metric::jacobian;
+M3 phi_metric(const V3& x) { return cgal_ext_test::flat_metric::metric(x); }
+M3 phi_A(const V3& x) { return cgal_ext_test::flat_metric::sqrt_metric(x); }
+M3 phi_curl(const V3& x) { return cgal_ext_test::flat_metric::curl(x); }
 
 } // namespace
 
