@@ -247,3 +247,70 @@ TEST_CASE("metric writes a .sol from formulas, and rejects bad formulas and non-
     CHECK(!std::filesystem::exists("x.sol"));
   }
 }
+
+TEST_CASE("transport prints one JSON line per pair: the rotation, or why there is none", "[cli][transport]") {
+  const std::string mesh = data_dir + "/l_shape.mesh"; // [0,2]x[0,2]x[0,2] without x, y > 1; 24 vertices
+  const std::string constant = (work / "constant.sol").string(), varying = (work / "varying.sol").string();
+  REQUIRE(run("metric " + mesh + " --expr '1, 0, 16, 0, 0, 4' -o " + constant + " --force").exit_code == 0);
+  REQUIRE(run("metric " + mesh + " --expr '1 + x^2, 0.2 * y, 1 + z, 0, 0.1 * x, 2 + y' -o " + varying + " --force")
+              .exit_code == 0);
+  const std::string pairs = file_with("pairs.txt",
+                                      "0.2 0.3 0.4 1.8 0.6 1.7\n"   // inside
+                                      "1.8 0.5 1 0.5 1.8 1\n"       // across the notch
+                                      "1.5 1.5 1 0.5 0.5 1\n"       // from the notch
+                                      "0.5 0.5 0.5 0.5 0.5 0.5\n"); // a == b
+  const Run c = run("transport " + mesh + " --metric " + constant + " --pairs " + pairs);
+  REQUIRE(c.exit_code == 0);
+  const std::string identity = "\"R\": [1, 0, 0, 0, 1, 0, 0, 0, 1], \"angle\": 0, \"evaluations\": ";
+  std::istringstream lines_of(c.out);
+  std::string line[4];
+  for (auto& l : line) std::getline(lines_of, l);
+  CHECK(line[0].find("{\"pair\": 0, " + identity) == 0);
+  CHECK(line[1].find("{\"pair\": 1, \"error\": \"the segment leaves the domain at t = ") == 0);
+  CHECK(line[2] == "{\"pair\": 2, \"error\": \"the start point is outside the domain\"}");
+  CHECK(line[3] == "{\"pair\": 3, " + identity + "0}");
+  CHECK(c.err.find("[summary] 4 pairs: 2 transported") != std::string::npos);
+
+  // A varying metric: a proper rotation, the same for both schemes within
+  // their tolerance, and the same output for any thread count.
+  const Run m1 = run("transport " + mesh + " --metric " + varying + " --pairs " + pairs + " --threads 1");
+  const Run m2 = run("transport " + mesh + " --metric " + varying + " --pairs " + pairs + " --threads 2");
+  const Run tr = run("transport " + mesh + " --metric " + varying + " --pairs " + pairs + " --scheme trapezoid --tol 1e-6");
+  REQUIRE(m1.exit_code == 0);
+  REQUIRE(tr.exit_code == 0);
+  CHECK(m1.out == m2.out);
+  CHECK(m1.out.find(identity) > m1.out.find("{\"pair\": 3")); // only a == b gives the identity
+  CHECK(m1.out.find("{\"pair\": 0, \"R\": [0.99") == 0);
+  CHECK(tr.out.find("{\"pair\": 0, \"R\": [0.99") == 0);
+  auto first_angle = [](const std::string& out) {
+    return std::strtod(out.c_str() + out.find("\"angle\": ") + 9, nullptr);
+  };
+  const double magnus = first_angle(m1.out), trapezoid = first_angle(tr.out);
+  CHECK(magnus > 0.01);
+  CHECK(std::abs(magnus - trapezoid) <= 1e-8 + 1e-6); // both within their tolerance of the same transport
+  CHECK(magnus != trapezoid);                         // but computed by different schemes
+
+  struct Case {
+    std::string args;
+    int exit_code;
+    std::string expected;
+  };
+  const Case cases[] = {
+      {"--metric " + varying + " --pairs " + pairs + " --scheme euler", 2, "--scheme 'euler': expected magnus or trapezoid"},
+      {"--metric " + varying + " --pairs " + pairs + " --tol 0", 2, "--tol '0': expected a positive finite number"},
+      {"--metric " + varying + " --pairs " + pairs + " --tol nan", 2, "--tol 'nan': expected a positive finite number"},
+      {"--metric " + varying + " --pairs " + pairs + " --threads 1.5", 2, "--threads '1.5': expected a whole number"},
+      {"--pairs " + pairs, 2, "missing option --metric"},
+      {"--metric " + varying + " --pairs " + file_with("bad_pairs.txt", "0 0 0 1 1 1\n0 0 0 1 1\n"), 1,
+       "bad_pairs.txt:2: expected 6 numbers"},
+      {"--metric " + file_with("short.sol", "Dimension 3\nSolAtVertices\n1\n1 1\n0.5\nEnd\n") + " --pairs " + pairs, 1,
+       "short.sol:4: SolAtVertices: the file has 1 vertex metrics but the mesh has 24 vertices"},
+  };
+  for (const Case& k : cases) {
+    INFO(k.args);
+    const Run e = run("transport " + mesh + " " + k.args);
+    CHECK(e.exit_code == k.exit_code);
+    CHECK(e.out.empty());
+    CHECK(e.err.find(k.expected) != std::string::npos);
+  }
+}

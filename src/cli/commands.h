@@ -16,6 +16,9 @@ int command_info(const std::vector<std::string>& args);
 /// `metric-frames walk MESH --segments FILE`: the simplices met by segments, as JSON lines.
 int command_walk(const std::vector<std::string>& args);
 
+/// `metric-frames transport MESH --metric SOL --pairs FILE`: transports between point pairs, as JSON lines.
+int command_transport(const std::vector<std::string>& args);
+
 /// `metric-frames metric MESH (--expr EXPRS | --size EXPR) -o OUT.sol`: a .sol file from formulas.
 int command_metric(const std::vector<std::string>& args);
 

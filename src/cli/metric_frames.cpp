@@ -24,6 +24,7 @@ struct Subcommand {
 const Subcommand subcommands[] = {
     {"info", "print counts, bounding box, volume and dihedral angles of a tet mesh", CGAL_ext::cli::command_info},
     {"walk", "list every vertex, edge, facet and tet that segments meet, as JSON lines", CGAL_ext::cli::command_walk},
+    {"transport", "transport T(a->b) of a metric between point pairs, as JSON lines", CGAL_ext::cli::command_transport},
     {"metric", "write a metric .sol file from formulas in x, y, z (or a constant tensor)", CGAL_ext::cli::command_metric},
 };
 
@@ -32,7 +33,7 @@ void print_help(std::ostream& os) {
         "Usage: metric-frames SUBCOMMAND [ARGS...]\n"
         "       metric-frames SUBCOMMAND --help\n\n"
         "Subcommands:\n";
-  for (const auto& s : subcommands) os << "  " << s.name << std::string(10 - std::strlen(s.name), ' ') << s.summary << "\n";
+  for (const auto& s : subcommands) os << "  " << s.name << std::string(11 - std::strlen(s.name), ' ') << s.summary << "\n";
   os << "\nOptions:\n  -h, --help    this help\n  --version     the version\n\n"
         "Meshes are ASCII Medit .mesh files (as MMG, Gmsh and TetGen -g write them).\n"
         "Exit codes: 0 success, 1 bad input or failure, 2 bad usage.\n";
