@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <iterator>
 #include <fstream>
 #include <string>
 
@@ -100,7 +101,18 @@ TEST_CASE("writing and reading back gives the same mesh", "[medit]") {
   CHECK(r.tetrahedron_references == m.tetrahedron_references);
   CHECK(r.triangles == m.triangles);
   CHECK(r.edges == m.edges);
-  CHECK_FALSE(std::filesystem::exists(out + ".tmp-write"));
+  // No temporary file is left next to it.
+  for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(out).parent_path()))
+    CHECK(e.path().filename().string().rfind("roundtrip.mesh.tmp-write", 0) == std::string::npos);
+  // A write that cannot happen names the path and leaves the old file as it was.
+  const std::string before = [&] {
+    std::ifstream in(out);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  CHECK_THROWS_WITH(write_medit_mesh("/nonexistent/dir/x.mesh", m), Catch::Contains("/nonexistent/dir/x.mesh"));
+  write_medit_mesh(out, m);
+  std::ifstream in(out);
+  CHECK(std::string(std::istreambuf_iterator<char>(in), {}) == before);
 }
 
 TEST_CASE("bad files give one clear error naming file and line", "[medit][bad-input]") {

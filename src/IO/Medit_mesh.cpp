@@ -3,6 +3,8 @@
 #include <CGAL_ext/IO/Medit_mesh.h>
 #include <CGAL_ext/IO/Medit_tokenizer.h>
 
+#include "write_file_atomically.h"
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -141,10 +143,7 @@ Medit_mesh read_medit_mesh(const std::string& path) {
 }
 
 void write_medit_mesh(const std::string& path, const Medit_mesh& m) {
-  const std::string tmp = path + ".tmp-write";
-  {
-    std::FILE* f = std::fopen(tmp.c_str(), "w");
-    if (!f) throw std::runtime_error(path + ": cannot open for writing");
+  internal::write_file_atomically(path, [&](std::FILE* f) {
     std::fprintf(f, "MeshVersionFormatted 2\n\nDimension 3\n\nVertices\n%zu\n", m.vertices.size());
     for (std::size_t i = 0; i < m.vertices.size(); ++i)
       std::fprintf(f, "%.17g %.17g %.17g %d\n", m.vertices[i][0], m.vertices[i][1], m.vertices[i][2],
@@ -170,18 +169,7 @@ void write_medit_mesh(const std::string& path, const Medit_mesh& m) {
                      i < m.edge_references.size() ? m.edge_references[i] : 0);
     }
     std::fprintf(f, "\nEnd\n");
-    const bool ok = std::ferror(f) == 0;
-    if (std::fclose(f) != 0 || !ok) {
-      std::remove(tmp.c_str());
-      throw std::runtime_error(path + ": write error");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error(path + ": cannot move the written file into place: " + ec.message());
-  }
+  });
 }
 
 } // namespace IO

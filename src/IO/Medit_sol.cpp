@@ -4,6 +4,8 @@
 #include <CGAL_ext/IO/Medit_tokenizer.h>
 #include <CGAL_ext/Metric_tensor.h>
 
+#include "write_file_atomically.h"
+
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
@@ -135,26 +137,12 @@ void write_medit_sol(const std::string& path, const std::vector<Eigen::Matrix3d>
   for (std::size_t i = 0; i < metrics.size(); ++i)
     if (!metrics[i].allFinite())
       throw std::invalid_argument("write_medit_sol: the metric of vertex " + std::to_string(i + 1) + " is not finite");
-  const std::string tmp = path + ".tmp-write";
-  {
-    std::FILE* f = std::fopen(tmp.c_str(), "w");
-    if (!f) throw std::runtime_error(path + ": cannot open for writing");
+  internal::write_file_atomically(path, [&](std::FILE* f) {
     std::fprintf(f, "MeshVersionFormatted 2\n\nDimension 3\n\nSolAtVertices\n%zu\n1 3\n", metrics.size());
     for (const Eigen::Matrix3d& g : metrics)
       std::fprintf(f, "%.17g %.17g %.17g %.17g %.17g %.17g\n", g(0, 0), g(1, 0), g(1, 1), g(2, 0), g(2, 1), g(2, 2));
     std::fprintf(f, "\nEnd\n");
-    const bool ok = std::ferror(f) == 0;
-    if (std::fclose(f) != 0 || !ok) {
-      std::remove(tmp.c_str());
-      throw std::runtime_error(path + ": write error");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error(path + ": cannot move the written file into place: " + ec.message());
-  }
+  });
 }
 
 } // namespace IO
