@@ -40,7 +40,7 @@ namespace {
 using Tr = CGAL_ext::Tet_mesh_triangulation_3<>;
 using Point = Tr::Point;
 using Field = CGAL_ext::Metric_field_3<Tr>;
-using Transport = CGAL_ext::Metric_transport_3<Field, CGAL_ext::Is_tet_mesh_domain_cell>;
+using Transport = CGAL_ext::Metric_transport_3<Tr, CGAL_ext::Is_tet_mesh_domain_cell>;
 using Pairs = std::vector<std::pair<Point, Point>>;
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {

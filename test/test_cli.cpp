@@ -2,64 +2,14 @@
 // clear error line (never a crash) for every kind of bad input.
 #include <catch2/catch.hpp>
 
-#include <sys/wait.h>
-#include <unistd.h>
+#include "cli_test_support.h"
 
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <algorithm>
 #include <sstream>
 #include <string>
 
-namespace {
-
-const std::string data_dir = CGAL_EXT_TEST_DATA_DIR;
-// CTest runs the test cases of this file as parallel processes: each process
-// gets its own scratch directory so that their outputs never mix.
-const std::filesystem::path work =
-    std::filesystem::temp_directory_path() / ("cgal_ext_test_cli_" + std::to_string(::getpid()));
-struct Remove_work_at_exit {
-  ~Remove_work_at_exit() {
-    std::error_code ec;
-    std::filesystem::remove_all(work, ec);
-  }
-} remove_work_at_exit;
-
-struct Run {
-  int exit_code; // -1 if killed by a signal
-  std::string out, err;
-};
-
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-Run run(const std::string& args) {
-  std::filesystem::create_directories(work);
-  const std::string cmd = std::string(CGAL_EXT_CLI) + " " + args + " >" + (work / "out").string() + " 2>" +
-                          (work / "err").string() + " </dev/null";
-  const int status = std::system(cmd.c_str());
-  Run r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(work / "out");
-  r.err = slurp(work / "err");
-  return r;
-}
-
-std::string file_with(const std::string& name, const std::string& content) {
-  std::filesystem::create_directories(work);
-  const auto p = work / name;
-  std::ofstream(p, std::ios::binary) << content;
-  return p.string();
-}
-
-std::size_t lines(const std::string& s) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')); }
-
-} // namespace
+using namespace cgal_ext_cli_test;
 
 TEST_CASE("help documents every subcommand", "[cli]") {
   const Run r = run("--help");
@@ -245,72 +195,5 @@ TEST_CASE("metric writes a .sol from formulas, and rejects bad formulas and non-
     CHECK(e.exit_code == c.exit_code);
     CHECK(e.err.find(c.expected) != std::string::npos);
     CHECK(!std::filesystem::exists("x.sol"));
-  }
-}
-
-TEST_CASE("transport prints one JSON line per pair: the rotation, or why there is none", "[cli][transport]") {
-  const std::string mesh = data_dir + "/l_shape.mesh"; // [0,2]x[0,2]x[0,2] without x, y > 1; 24 vertices
-  const std::string constant = (work / "constant.sol").string(), varying = (work / "varying.sol").string();
-  REQUIRE(run("metric " + mesh + " --expr '1, 0, 16, 0, 0, 4' -o " + constant + " --force").exit_code == 0);
-  REQUIRE(run("metric " + mesh + " --expr '1 + x^2, 0.2 * y, 1 + z, 0, 0.1 * x, 2 + y' -o " + varying + " --force")
-              .exit_code == 0);
-  const std::string pairs = file_with("pairs.txt",
-                                      "0.2 0.3 0.4 1.8 0.6 1.7\n"   // inside
-                                      "1.8 0.5 1 0.5 1.8 1\n"       // across the notch
-                                      "1.5 1.5 1 0.5 0.5 1\n"       // from the notch
-                                      "0.5 0.5 0.5 0.5 0.5 0.5\n"); // a == b
-  const Run c = run("transport " + mesh + " --metric " + constant + " --pairs " + pairs);
-  REQUIRE(c.exit_code == 0);
-  const std::string identity = "\"R\": [1, 0, 0, 0, 1, 0, 0, 0, 1], \"angle\": 0, \"evaluations\": ";
-  std::istringstream lines_of(c.out);
-  std::string line[4];
-  for (auto& l : line) std::getline(lines_of, l);
-  CHECK(line[0].find("{\"pair\": 0, " + identity) == 0);
-  CHECK(line[1].find("{\"pair\": 1, \"error\": \"the segment leaves the domain at t = ") == 0);
-  CHECK(line[2] == "{\"pair\": 2, \"error\": \"the start point is outside the domain\"}");
-  CHECK(line[3] == "{\"pair\": 3, " + identity + "0}");
-  CHECK(c.err.find("[summary] 4 pairs: 2 transported") != std::string::npos);
-
-  // A varying metric: a proper rotation, the same for both schemes within
-  // their tolerance, and the same output for any thread count.
-  const Run m1 = run("transport " + mesh + " --metric " + varying + " --pairs " + pairs + " --threads 1");
-  const Run m2 = run("transport " + mesh + " --metric " + varying + " --pairs " + pairs + " --threads 2");
-  const Run tr = run("transport " + mesh + " --metric " + varying + " --pairs " + pairs + " --scheme trapezoid --tol 1e-6");
-  REQUIRE(m1.exit_code == 0);
-  REQUIRE(tr.exit_code == 0);
-  CHECK(m1.out == m2.out);
-  CHECK(m1.out.find(identity) > m1.out.find("{\"pair\": 3")); // only a == b gives the identity
-  CHECK(m1.out.find("{\"pair\": 0, \"R\": [0.99") == 0);
-  CHECK(tr.out.find("{\"pair\": 0, \"R\": [0.99") == 0);
-  auto first_angle = [](const std::string& out) {
-    return std::strtod(out.c_str() + out.find("\"angle\": ") + 9, nullptr);
-  };
-  const double magnus = first_angle(m1.out), trapezoid = first_angle(tr.out);
-  CHECK(magnus > 0.01);
-  CHECK(std::abs(magnus - trapezoid) <= 1e-8 + 1e-6); // both within their tolerance of the same transport
-  CHECK(magnus != trapezoid);                         // but computed by different schemes
-
-  struct Case {
-    std::string args;
-    int exit_code;
-    std::string expected;
-  };
-  const Case cases[] = {
-      {"--metric " + varying + " --pairs " + pairs + " --scheme euler", 2, "--scheme 'euler': expected magnus or trapezoid"},
-      {"--metric " + varying + " --pairs " + pairs + " --tol 0", 2, "--tol '0': expected a positive finite number"},
-      {"--metric " + varying + " --pairs " + pairs + " --tol nan", 2, "--tol 'nan': expected a positive finite number"},
-      {"--metric " + varying + " --pairs " + pairs + " --threads 1.5", 2, "--threads '1.5': expected a whole number"},
-      {"--pairs " + pairs, 2, "missing option --metric"},
-      {"--metric " + varying + " --pairs " + file_with("bad_pairs.txt", "0 0 0 1 1 1\n0 0 0 1 1\n"), 1,
-       "bad_pairs.txt:2: expected 6 numbers"},
-      {"--metric " + file_with("short.sol", "Dimension 3\nSolAtVertices\n1\n1 1\n0.5\nEnd\n") + " --pairs " + pairs, 1,
-       "short.sol:4: SolAtVertices: the file has 1 vertex metrics but the mesh has 24 vertices"},
-  };
-  for (const Case& k : cases) {
-    INFO(k.args);
-    const Run e = run("transport " + mesh + " " + k.args);
-    CHECK(e.exit_code == k.exit_code);
-    CHECK(e.out.empty());
-    CHECK(e.err.find(k.expected) != std::string::npos);
   }
 }

@@ -103,7 +103,7 @@ int command_transport(const std::vector<std::string>& args) {
     pairs.emplace_back(Tr::Point(p.a[0], p.a[1], p.a[2]), Tr::Point(p.b[0], p.b[1], p.b[2]));
   timer.stage("read pairs");
 
-  const Metric_transport_3<Metric_field_3<Tr>, Is_tet_mesh_domain_cell> transport(field, Is_tet_mesh_domain_cell());
+  const Metric_transport_3<Tr, Is_tet_mesh_domain_cell> transport(field, Is_tet_mesh_domain_cell());
   std::vector<Metric_transport_result> results;
   transport.transport_batch(pairs, opt, results);
   timer.stage("transport");
@@ -114,14 +114,14 @@ int command_transport(const std::vector<std::string>& args) {
     const Metric_transport_result& r = results[i];
     if (!r.ok) {
       ++failed;
-      line = "{\"pair\": " + std::to_string(i) + ", \"error\": \"" + json_escape(r.error) + "\"}\n";
+      line = "{\"pair\": " + std::to_string(i) + ", \"error\": \"" + json_escape(r.message) + "\"}\n";
     } else {
       evaluations += r.evaluations;
       unconverged += !r.converged;
       char buf[64];
       line = "{\"pair\": " + std::to_string(i) + ", \"R\": [";
       for (int k = 0; k < 9; ++k) {
-        std::snprintf(buf, sizeof buf, "%s%.17g", k ? ", " : "", r.rotation(k / 3, k % 3));
+        std::snprintf(buf, sizeof buf, "%s%.17g", k ? ", " : "", r.R(k / 3, k % 3));
         line += buf;
       }
       std::snprintf(buf, sizeof buf, "], \"angle\": %.17g, \"evaluations\": %zu}\n", r.angle, r.evaluations);

@@ -1,0 +1,81 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// Shared by the command-line tests: run metric-frames with arguments,
+// capture its exit code, stdout and stderr, and write input files, all in a
+// scratch directory of the test process.
+#ifndef CGAL_EXT_TEST_CLI_TEST_SUPPORT_H
+#define CGAL_EXT_TEST_CLI_TEST_SUPPORT_H
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <system_error>
+
+namespace cgal_ext_cli_test {
+
+/// The test data directory (test/data).
+inline const std::string data_dir = CGAL_EXT_TEST_DATA_DIR;
+
+/// The scratch directory. CTest runs the test cases of a test file as
+/// parallel processes: each process gets its own directory, named after its
+/// pid, so that their outputs never mix. It is removed at exit.
+inline const std::filesystem::path work =
+    std::filesystem::temp_directory_path() / ("cgal_ext_test_cli_" + std::to_string(::getpid()));
+
+/// Removes the scratch directory when the test process ends.
+struct Remove_work_at_exit {
+  ~Remove_work_at_exit() {
+    std::error_code ec;
+    std::filesystem::remove_all(work, ec);
+  }
+};
+inline Remove_work_at_exit remove_work_at_exit;
+
+/// What a run of metric-frames gave.
+struct Run {
+  int exit_code; ///< -1 if killed by a signal
+  std::string out, err;
+};
+
+/// The content of a file (empty if it cannot be read).
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+/// Runs `metric-frames ARGS` through the shell, stdin from /dev/null.
+inline Run run(const std::string& args) {
+  std::filesystem::create_directories(work);
+  const std::string cmd = std::string(CGAL_EXT_CLI) + " " + args + " >" + (work / "out").string() + " 2>" +
+                          (work / "err").string() + " </dev/null";
+  const int status = std::system(cmd.c_str());
+  Run r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(work / "out");
+  r.err = slurp(work / "err");
+  return r;
+}
+
+/// Writes `content` to the file `name` of the scratch directory; returns its path.
+inline std::string file_with(const std::string& name, const std::string& content) {
+  std::filesystem::create_directories(work);
+  const auto p = work / name;
+  std::ofstream(p, std::ios::binary) << content;
+  return p.string();
+}
+
+/// The number of lines (newlines) of a text.
+inline std::size_t lines(const std::string& s) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')); }
+
+} // namespace cgal_ext_cli_test
+
+#endif // CGAL_EXT_TEST_CLI_TEST_SUPPORT_H

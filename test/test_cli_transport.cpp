@@ -1,0 +1,145 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// metric-frames transport: one JSON line per pair (the rotation, or why there
+// is none), exit codes, and one clear error line for bad input.
+#include <catch2/catch.hpp>
+
+#include "cli_test_support.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace cgal_ext_cli_test;
+
+namespace {
+
+// [0,2]^3 without the cube x, y > 1 (Kuhn tets of unit cubes); 24 vertices.
+const std::string l_shape = data_dir + "/l_shape.mesh";
+
+std::vector<std::string> split_lines(const std::string& s) {
+  std::vector<std::string> out;
+  std::istringstream in(s);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+// A .sol file of the L-shape from formulas, made by `metric-frames metric`.
+std::string metric_file(const std::string& name, const std::string& expr) {
+  const std::string path = (work / name).string();
+  const Run r = run("metric " + l_shape + " --expr '" + expr + "' -o " + path + " --force");
+  REQUIRE(r.exit_code == 0);
+  return path;
+}
+
+double number_after(const std::string& line, const std::string& key) {
+  const auto k = line.find("\"" + key + "\": ");
+  REQUIRE(k != std::string::npos);
+  return std::strtod(line.c_str() + k + key.size() + 4, nullptr);
+}
+
+const std::string pairs_content = "# ax ay az bx by bz\n"
+                                  "0.2 0.3 0.4 1.8 0.6 1.7\n" // inside
+                                  "1.8 0.5 1 0.5 1.8 1\n"     // across the notch: leaves and re-enters
+                                  "\n"
+                                  "1.5 1.5 1 0.5 0.5 1\n"     // from the notch: starts outside
+                                  "0.5 0.5 0.5 0.5 0.5 0.5\n" // a == b
+                                  "0 0 0 2 0 2\n";            // along two boundary edges (face diagonals)
+
+} // namespace
+
+TEST_CASE("transport: a constant metric gives exactly the identity, and outside pairs an error line",
+          "[cli][transport]") {
+  const std::string constant = metric_file("constant.sol", "1, 0, 16, 0, 0, 4");
+  const std::string pairs = file_with("pairs.txt", pairs_content);
+  const Run c = run("transport " + l_shape + " --metric " + constant + " --pairs " + pairs);
+  REQUIRE(c.exit_code == 0);
+  const auto out = split_lines(c.out);
+  REQUIRE(out.size() == 5);
+  const std::string identity = "\"R\": [1, 0, 0, 0, 1, 0, 0, 0, 1], \"angle\": 0, \"evaluations\": ";
+  CHECK(out[0].find("{\"pair\": 0, " + identity) == 0);
+  CHECK(out[1] == "{\"pair\": 1, \"error\": \"the segment leaves the domain at t = 0.384615 and re-enters it at t "
+                  "= 0.615385\"}");
+  CHECK(out[2] == "{\"pair\": 2, \"error\": \"the start point is outside the domain\"}");
+  CHECK(out[3] == "{\"pair\": 3, " + identity + "0}");
+  CHECK(out[4].find("{\"pair\": 4, " + identity) == 0);
+  CHECK(c.err.find("[summary] 5 pairs: 3 transported") != std::string::npos);
+  CHECK(c.err.find("2 outside the domain") != std::string::npos);
+  CHECK(c.err.find("[stage] transport") != std::string::npos);
+}
+
+TEST_CASE("transport: a varying metric gives a rotation, the same for any thread count", "[cli][transport]") {
+  const std::string varying = metric_file("varying.sol", "1 + x^2, 0.2 * y, 1 + z, 0, 0.1 * x, 2 + y");
+  const std::string pairs = file_with("pairs.txt", pairs_content);
+  const std::string base = "transport " + l_shape + " --metric " + varying + " --pairs " + pairs;
+  const Run m1 = run(base + " --threads 1");
+  const Run m2 = run(base + " --threads=2");
+  const Run tr = run(base + " --scheme trapezoid --tol 1e-6");
+  REQUIRE(m1.exit_code == 0);
+  REQUIRE(tr.exit_code == 0);
+  CHECK(m1.out == m2.out);
+  const auto magnus = split_lines(m1.out), trapezoid = split_lines(tr.out);
+  REQUIRE(magnus.size() == 5);
+  REQUIRE(trapezoid.size() == 5);
+  for (int i : {0, 4}) {
+    INFO(magnus[i]);
+    CHECK(magnus[i].find("{\"pair\": " + std::to_string(i) + ", \"R\": [0.99") == 0);
+    // Both schemes are within their tolerance of the same transport.
+    const double a = number_after(magnus[i], "angle"), b = number_after(trapezoid[i], "angle");
+    CHECK(a > 0.01);
+    CHECK(std::abs(a - b) <= 1e-8 + 1e-6);
+    CHECK(a != b); // but computed by different schemes
+    CHECK(number_after(magnus[i], "evaluations") > 0);
+  }
+  CHECK(magnus[3] == "{\"pair\": 3, \"R\": [1, 0, 0, 0, 1, 0, 0, 0, 1], \"angle\": 0, \"evaluations\": 0}");
+}
+
+TEST_CASE("transport: bad input is one error naming the file with exit 1, bad usage exits with 2", "[cli][transport][bad-input]") {
+  const std::string varying = metric_file("varying.sol", "1 + x^2, 0.2 * y, 1 + z, 0, 0.1 * x, 2 + y");
+  const std::string pairs = file_with("pairs.txt", pairs_content);
+  const std::string bad_pairs = file_with("bad_pairs.txt", "0 0 0 1 1 1\n# comment\n0 0 0 1 1\n");
+  const std::string short_sol = file_with("short.sol", "MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n2\n1 3\n"
+                                                       "1 0 1 0 0 1\n1 0 1 0 0 1\nEnd\n");
+  struct Case {
+    std::string args;
+    int exit_code;
+    std::string expected;
+    std::string also_expected = {};
+  };
+  const Case cases[] = {
+      {"--metric " + varying + " --pairs " + pairs + " --scheme euler", 2,
+       "metric-frames transport: --scheme 'euler': expected magnus or trapezoid"},
+      {"--metric " + varying + " --pairs " + pairs + " --tol 0", 2, "--tol '0': expected a positive finite number"},
+      {"--metric " + varying + " --pairs " + pairs + " --tol -1e-8", 2, "--tol '-1e-8': expected a positive"},
+      {"--metric " + varying + " --pairs " + pairs + " --tol nan", 2, "--tol 'nan': expected a positive finite number"},
+      {"--metric " + varying + " --pairs " + pairs + " --tol inf", 2, "--tol 'inf': expected a positive finite number"},
+      {"--metric " + varying + " --pairs " + pairs + " --tol 1e-8x", 2, "--tol '1e-8x': expected a positive"},
+      {"--metric " + varying + " --pairs " + pairs + " --threads 1.5", 2, "--threads '1.5': expected a whole number"},
+      {"--metric " + varying + " --pairs " + pairs + " --threads 0", 2, "--threads '0': expected"},
+      {"--pairs " + pairs, 2, "missing option --metric"},
+      {"--metric " + varying, 2, "missing option --pairs"},
+      {"--metric " + varying + " --pairs " + pairs + " extra.mesh", 2, "unexpected argument 'extra.mesh'"},
+      {"--metric " + varying + " --pairs " + bad_pairs, 1,
+       "metric-frames transport: error: " + bad_pairs + ":3: expected 6 numbers (ax ay az bx by bz), found 5"},
+      {"--metric " + varying + " --pairs " + (work / "none.txt").string(), 1,
+       "none.txt: cannot open the file for reading"},
+      {"--metric " + short_sol + " --pairs " + pairs, 1, "metric-frames transport: error: " + short_sol + ":",
+       "SolAtVertices: the file has 2 vertex metrics but the mesh has 24 vertices"},
+  };
+  for (const Case& k : cases) {
+    INFO(k.args);
+    const Run e = run("transport " + l_shape + " " + k.args);
+    INFO(e.err);
+    CHECK(e.exit_code == k.exit_code);
+    CHECK(e.out.empty());
+    CHECK(e.err.find(k.expected) != std::string::npos);
+    CHECK(e.err.find(k.also_expected) != std::string::npos);
+  }
+  CHECK(run("transport --metric " + varying + " --pairs " + pairs).exit_code == 2); // no MESH
+  const Run help = run("transport --help");
+  CHECK(help.exit_code == 0);
+  CHECK(help.out.find("Usage: metric-frames transport MESH --metric SOL --pairs FILE") == 0);
+}
