@@ -7,8 +7,13 @@
 #define CGAL_EXT_CLI_COMMON_H
 
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <iostream>
+#include <memory>
+
+#include <tbb/global_control.h>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -110,6 +115,41 @@ public:
 private:
   Clock::time_point start_, last_;
 };
+
+/// The JSON string-literal body of `s` (quotes, backslashes and control characters escaped).
+inline std::string json_escape(const std::string& s) {
+  std::string out;
+  for (char ch : s) {
+    if (ch == '"' || ch == '\\') out += '\\';
+    if (static_cast<unsigned char>(ch) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", ch);
+      out += buf;
+    } else {
+      out += ch;
+    }
+  }
+  return out;
+}
+
+/// A positive finite number, or a usage error naming the option.
+inline double parse_positive(Arguments& a, const std::string& option, const std::string& value) {
+  char* end = nullptr;
+  const double v = std::strtod(value.c_str(), &end);
+  if (end == value.c_str() || *end != '\0' || !(v > 0) || !std::isfinite(v))
+    a.fail(option + " '" + value + "': expected a positive finite number");
+  return v;
+}
+
+/// The `--threads N` option: a limit on TBB's worker threads for the
+/// command's lifetime, or null (all cores) if the option is absent.
+inline std::unique_ptr<tbb::global_control> thread_limit(Arguments& a) {
+  const auto n = a.option("--threads");
+  if (!n) return nullptr;
+  const double v = parse_positive(a, "--threads", *n);
+  if (v != std::floor(v) || v > 1024) a.fail("--threads '" + *n + "': expected a whole number from 1 to 1024");
+  return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(v));
+}
 
 } // namespace CGAL_ext::cli
 

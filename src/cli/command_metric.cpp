@@ -38,10 +38,6 @@ const char* metric_help =
     "and more, the constants pi and e. Every tensor must be finite, symmetric and\n"
     "positive definite: the first vertex where it is not is an error naming it.\n";
 
-double condition_number(const Eigen::Matrix3d& g) {
-  const Eigen::Vector3d l = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(g, Eigen::EigenvaluesOnly).eigenvalues();
-  return l(2) / l(0);
-}
 } // namespace
 
 int command_metric(const std::vector<std::string>& args) {
@@ -68,28 +64,13 @@ int command_metric(const std::vector<std::string>& args) {
   const IO::Medit_mesh mesh = IO::read_medit_mesh(mesh_path);
   timer.stage("read mesh");
 
-  std::vector<Eigen::Matrix3d> metrics(mesh.vertices.size());
+  const std::vector<Eigen::Matrix3d> metrics = evaluate_metric(formula, mesh.vertices, expr ? "--expr" : "--size");
   double min_size = std::numeric_limits<double>::infinity(), max_size = 0, max_condition = 1;
-  for (std::size_t i = 0; i < metrics.size(); ++i) {
-    const auto& p = mesh.vertices[i];
-    auto where = [&] {
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "vertex %zu (%.17g, %.17g, %.17g)", i + 1, p[0], p[1], p[2]);
-      return std::string(expr ? "--expr" : "--size") + " at " + buf + ": ";
-    };
-    try {
-      metrics[i] = formula(p[0], p[1], p[2]);
-    } catch (const std::domain_error& e) {
-      throw std::runtime_error(where() + e.what());
-    }
-    const std::string problem = check_metric_tensor(metrics[i]);
-    if (!problem.empty()) throw std::runtime_error(where() + problem);
-    metrics[i] = 0.5 * (metrics[i] + metrics[i].transpose()).eval();
-    const Eigen::Vector3d l =
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(metrics[i], Eigen::EigenvaluesOnly).eigenvalues();
+  for (const Eigen::Matrix3d& g : metrics) {
+    const Eigen::Vector3d l = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(g, Eigen::EigenvaluesOnly).eigenvalues();
     min_size = std::min(min_size, 1 / std::sqrt(l(2)));
     max_size = std::max(max_size, 1 / std::sqrt(l(0)));
-    max_condition = std::max(max_condition, condition_number(metrics[i]));
+    max_condition = std::max(max_condition, l(2) / l(0));
   }
   timer.stage("evaluate");
   IO::write_medit_sol(out_path, metrics);

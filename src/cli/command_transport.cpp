@@ -10,8 +10,6 @@
 #include <CGAL_ext/Metric_field_3.h>
 #include <CGAL_ext/Metric_transport_3.h>
 
-#include <tbb/global_control.h>
-
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -41,28 +39,6 @@ const char* transport_help =
     "                        not depend on N\n"
     "  -h, --help            this help\n";
 
-std::string json_escape(const std::string& s) {
-  std::string out;
-  for (char ch : s) {
-    if (ch == '"' || ch == '\\') out += '\\';
-    if (static_cast<unsigned char>(ch) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", ch);
-      out += buf;
-    } else {
-      out += ch;
-    }
-  }
-  return out;
-}
-
-double parse_positive(Arguments& a, const std::string& option, const std::string& value) {
-  char* end = nullptr;
-  const double v = std::strtod(value.c_str(), &end);
-  if (end == value.c_str() || *end != '\0' || !(v > 0) || !std::isfinite(v))
-    a.fail(option + " '" + value + "': expected a positive finite number");
-  return v;
-}
 } // namespace
 
 int command_transport(const std::vector<std::string>& args) {
@@ -77,12 +53,7 @@ int command_transport(const std::vector<std::string>& args) {
     else if (*scheme == "trapezoid") opt.scheme = Transport_scheme::trapezoid;
     else a.fail("--scheme '" + *scheme + "': expected magnus or trapezoid");
   }
-  std::unique_ptr<tbb::global_control> threads;
-  if (const auto n = a.option("--threads")) {
-    const double v = parse_positive(a, "--threads", *n);
-    if (v != std::floor(v) || v > 1024) a.fail("--threads '" + *n + "': expected a whole number from 1 to 1024");
-    threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(v));
-  }
+  const auto threads = thread_limit(a);
   const std::string mesh_path = a.positional("MESH");
   a.finish();
 

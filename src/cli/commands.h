@@ -22,6 +22,9 @@ int command_transport(const std::vector<std::string>& args);
 /// `metric-frames metric MESH (--expr EXPRS | --size EXPR) -o OUT.sol`: a .sol file from formulas.
 int command_metric(const std::vector<std::string>& args);
 
+/// `metric-frames generate INPUT [--metric SOL | ...] -o OUTDIR`: the frame field, its singularities and output files.
+int command_generate(const std::vector<std::string>& args);
+
 } // namespace CGAL_ext::cli
 
 #endif

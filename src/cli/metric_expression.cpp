@@ -4,6 +4,8 @@
 
 #include "cli_common.h"
 
+#include <CGAL_ext/Metric_tensor.h>
+
 #include <muParser.h>
 
 #include <cmath>
@@ -67,6 +69,29 @@ Eigen::Matrix3d Metric_expression::operator()(double x, double y, double z) cons
     g << v[0], v[1], v[3], v[1], v[2], v[4], v[3], v[4], v[5];
   }
   return g;
+}
+
+std::vector<Eigen::Matrix3d> evaluate_metric(const Metric_expression& formula,
+                                             const std::vector<std::array<double, 3>>& points,
+                                             const std::string& option) {
+  std::vector<Eigen::Matrix3d> metrics(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto& p = points[i];
+    auto where = [&] {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "vertex %zu (%.17g, %.17g, %.17g)", i + 1, p[0], p[1], p[2]);
+      return option + " at " + buf + ": ";
+    };
+    try {
+      metrics[i] = formula(p[0], p[1], p[2]);
+    } catch (const std::domain_error& e) {
+      throw std::runtime_error(where() + e.what());
+    }
+    const std::string problem = check_metric_tensor(metrics[i]);
+    if (!problem.empty()) throw std::runtime_error(where() + problem);
+    metrics[i] = 0.5 * (metrics[i] + metrics[i].transpose()).eval();
+  }
+  return metrics;
 }
 
 } // namespace CGAL_ext::cli

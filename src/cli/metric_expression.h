@@ -8,8 +8,10 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace CGAL_ext::cli {
 
@@ -40,6 +42,13 @@ private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// `g` at every point, validated (check_metric_tensor) and symmetrised.
+/// Throws std::runtime_error naming `option`, the 1-based vertex and its
+/// position if a value is not a valid metric.
+std::vector<Eigen::Matrix3d> evaluate_metric(const Metric_expression& formula,
+                                             const std::vector<std::array<double, 3>>& points,
+                                             const std::string& option);
 
 } // namespace CGAL_ext::cli
 

@@ -22,6 +22,7 @@ struct Subcommand {
 };
 
 const Subcommand subcommands[] = {
+    {"generate", "frame field in a metric: frames.fra, mesh, VTU files, singular edges, report", CGAL_ext::cli::command_generate},
     {"info", "print counts, bounding box, volume and dihedral angles of a tet mesh", CGAL_ext::cli::command_info},
     {"walk", "list every vertex, edge, facet and tet that segments meet, as JSON lines", CGAL_ext::cli::command_walk},
     {"transport", "transport T(a->b) of a metric between point pairs, as JSON lines", CGAL_ext::cli::command_transport},

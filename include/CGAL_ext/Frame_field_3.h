@@ -1,0 +1,888 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_EXT_FRAME_FIELD_3_H
+#define CGAL_EXT_FRAME_FIELD_3_H
+
+/// \file Frame_field_3.h
+/// Metric-driven octahedral frame fields on a tetrahedral mesh (MATH.md
+/// section 5; Fang et al., "Metric-Driven 3D Frame Field Generation", TVCG
+/// 2023): one frame per tetrahedron, smooth after transport by the metric's
+/// connection, aligned with the boundary in the metric.
+
+#include <CGAL_ext/Cell_transport_3.h>
+#include <CGAL_ext/Input_error.h>
+#include <CGAL_ext/Octahedral_frame.h>
+#include <CGAL_ext/Tet_mesh_triangulation_3.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace CGAL_ext {
+
+/// \ingroup PkgCGALExtFrames
+/// Options of `Frame_field_3::compute()`.
+struct Frame_field_options {
+  /// Weight `lambda` of the soft boundary-alignment term relative to the
+  /// smoothness term (see `Frame_field_3`). Used by the linear
+  /// initialisation, and in the refinement for the boundary faces that are
+  /// not hard constraints.
+  double boundary_weight = 100;
+  /// Whether boundary tetrahedra are constrained exactly after the
+  /// projection (their frame keeps an axis on `A^{-1} n`; see `Frame_field_3`).
+  bool hard_boundary = true;
+  /// Tolerance in radians of each face transport `T(i->j)`.
+  double transport_tolerance = 1e-6;
+  /// The transport scheme.
+  Transport_scheme transport_scheme = Transport_scheme::magnus;
+  /// Relative residual at which the conjugate gradients of the linear
+  /// initialisation stop.
+  double linear_tolerance = 1e-6;
+  /// The largest number of conjugate-gradient iterations.
+  int max_linear_iterations = 5000;
+  /// The refinement stops when an iteration lowers the energy by less than
+  /// `energy_tolerance` times the energy, three times in a row, or when the
+  /// energy is below `1e-14` times the total face weight.
+  double energy_tolerance = 1e-7;
+  /// The largest number of L-BFGS iterations (0 skips the refinement).
+  int max_refinement_iterations = 1000;
+  /// The number of (step, gradient change) pairs kept by L-BFGS.
+  int lbfgs_memory = 8;
+  /// If set, called at the end of each stage with its name, its duration in
+  /// seconds and a short detail line (for progress output).
+  std::function<void(const std::string& stage, double seconds, const std::string& detail)> progress;
+};
+
+/// \ingroup PkgCGALExtFrames
+/// Figures of a `Frame_field_3::compute()` run.
+struct Frame_field_statistics {
+  /// Tetrahedra (frames).
+  std::size_t tets = 0;
+  /// Interior faces (smoothness terms) and boundary faces (alignment terms).
+  std::size_t interior_faces = 0, boundary_faces = 0;
+  /// Boundary tetrahedra with one hard axis, and with two (a frame fixed by
+  /// two non-parallel boundary faces, e.g. along a sharp edge).
+  std::size_t hard_one_axis = 0, hard_two_axes = 0;
+  /// Face transports that are exactly the identity (constant metric).
+  std::size_t identity_transports = 0;
+  /// Largest transport angle over the faces, in radians.
+  double max_transport_angle = 0;
+  /// Conjugate-gradient iterations of the initialisation and its final relative residual.
+  int linear_iterations = 0;
+  double linear_residual = 0;
+  /// Tetrahedra whose initial SH vector was (near) zero and got the identity.
+  std::size_t degenerate_projections = 0;
+  /// L-BFGS iterations and energy evaluations.
+  int refinement_iterations = 0, energy_evaluations = 0;
+  /// Smoothness energy `sum_f w_f |s_j - D(T_ij) s_i|^2` after the
+  /// projection and at the end.
+  double projected_energy = 0, smoothness_energy = 0;
+  /// The sum of the face weights (the energy of the worst field is about
+  /// twice this; `smoothness_energy / total_face_weight` is a mean).
+  double total_face_weight = 0;
+  /// Boundary alignment: angle between `A^{-1} n` and the nearest frame
+  /// vector `F e_k`, in degrees, over the boundary faces.
+  double boundary_error_mean_deg = 0, boundary_error_max_deg = 0;
+  /// `max |F^T g F - I|` over the tetrahedra (entry-wise), `g` at the centroid.
+  double max_orthonormality_error = 0;
+  /// Seconds per stage: set-up (geometry, weights), face transports, linear
+  /// initialisation, projection, refinement.
+  double seconds_setup = 0, seconds_transports = 0, seconds_linear = 0, seconds_projection = 0,
+         seconds_refinement = 0;
+};
+
+namespace internal {
+
+// Sum of f(begin, end) over fixed blocks, added in block order: the same bits
+// whatever the number of threads.
+template <class F>
+double deterministic_sum(std::size_t n, F&& f) {
+  constexpr std::size_t block = 2048;
+  const std::size_t nb = (n + block - 1) / block;
+  std::vector<double> part(nb, 0.0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nb), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t b = r.begin(); b != r.end(); ++b) part[b] = f(b * block, std::min(n, (b + 1) * block));
+  });
+  double s = 0;
+  for (double p : part) s += p;
+  return s;
+}
+
+template <class F>
+void parallel_for_each_index(std::size_t n, F&& f) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
+  });
+}
+
+} // namespace internal
+
+/// \ingroup PkgCGALExtFrames
+/// An octahedral frame field in a metric: one rotation `R_i` per
+/// tetrahedron, and the frame `F_i = A_i^{-1} R_i` (`A_i = g^{1/2}` at the
+/// centroid), whose columns are the hex edge vectors, of unit length in the
+/// metric (`F^T g F = I`).
+///
+/// **Energy.** With `s_i = D(R_i) s0` the band-4 SH vector of frame `i`
+/// (Octahedral_frame.h) and, for each interior face `f` between tetrahedra
+/// `i` and `j`, the transport `T(i->j)`,
+/// `E = sum_f w_f |s_j - D(T(i->j)) s_i|^2` (MATH.md section 5). The weight
+/// is the face's area over the distance between the two centroids, both
+/// measured in the metric at the face centroid: `w_f = det(A) |A^{-1} n| a /
+/// |A (c_j - c_i)|` (`a`, `n` the Euclidean area and unit normal). It is the
+/// usual two-point flux discretisation of the Dirichlet energy, in the metric.
+///
+/// **Transport path.** `T(i->j)` is taken along the broken line from the
+/// centroid of `i` to the centroid of the shared face, then to the centroid of
+/// `j`: two pieces, each inside one tetrahedron, integrated by
+/// `cell_transport()` with the tetrahedron's linear `A` and constant curl.
+/// No walk is needed, and the path stays in the closed domain even where the
+/// straight segment between the centroids would leave it (non-convex corners).
+/// `T(j->i) = T(i->j)^T` is used for the reverse direction.
+///
+/// **Boundary alignment.** On a boundary face with outward unit normal `n`,
+/// the frame must have an axis along `d = A^{-1} n / |A^{-1} n|` (`A` at the
+/// face centroid): `R e_k = +-d` (MATH.md section 5). In SH terms,
+/// `D(R_d)^T s` (with `R_d e_z = d`) must have coefficients `m = -3..3` equal
+/// to `(0, 0, 0, sqrt(7/12), 0, 0, 0)`: a linear condition, used as the soft
+/// term `lambda w_b |P D(R_d)^T s - c|^2` with `w_b` the face's metric area over
+/// the metric distance from the tetrahedron's centroid to the face centroid.
+/// With `hard_boundary`, after the projection each boundary tetrahedron is
+/// turned so that an axis is exactly on `d` of its largest boundary face (and
+/// a second axis on a second face whose `d` is more than 30 degrees from the
+/// first, projected orthogonally to it), and the refinement only turns it
+/// about that axis (or not at all).
+///
+/// **Method.** (1) Sparse linear initialisation: the quadratic energy plus
+/// the soft boundary terms, minimised over unconstrained 9-vectors by
+/// conjugate gradients with block-Jacobi preconditioning (matrix-free: the
+/// 9x9 blocks `D(T)` are applied from the stored transports, so memory stays
+/// linear with a small constant); (2) projection of each `s_i` onto the
+/// octahedral variety (`rotation_from_octahedral_sh()`: coarse search plus
+/// Newton on SO(3)); (3) L-BFGS on local rotations `R_i <- exp([w_i]_x) R_i`
+/// with Armijo backtracking, until the energy converges.
+///
+/// **Determinism.** Every parallel loop writes per-tetrahedron data only, and
+/// every sum is made of fixed blocks added in order, so the result does not
+/// depend on the number of threads.
+///
+/// \tparam Metric_field a metric field such as `Metric_field_3<Tr>`: it
+///         provides `triangulation()`, `A_at(c, p)` and `curl(c)`
+/// \tparam CellIndexMap a readable property map from cell handle to a 0-based
+///         index, negative outside the domain; the domain's indices must be
+///         exactly `0..n-1` (the tetrahedron order of the mesh file)
+/// \tparam VertexIndexMap a readable property map from vertex handle to its
+///         0-based index
+template <class Metric_field, class CellIndexMap = Tet_mesh_cell_index_map,
+          class VertexIndexMap = Tet_mesh_vertex_index_map>
+class Frame_field_3 {
+public:
+  /// The triangulation type.
+  using Triangulation = typename Metric_field::Triangulation_3;
+  /// Cell handle type.
+  using Cell_handle = typename Triangulation::Cell_handle;
+  /// Vertex handle type.
+  using Vertex_handle = typename Triangulation::Vertex_handle;
+  /// Point type.
+  using Point_3 = typename Triangulation::Point;
+
+  /// One boundary face: tetrahedron, local facet, Euclidean outward unit
+  /// normal, the aligned direction `d = A^{-1} n / |A^{-1} n|` and the
+  /// metric area.
+  struct Boundary_face {
+    std::size_t tet;           ///< tetrahedron index
+    int facet;                 ///< the facet's index in the cell (its opposite vertex)
+    Eigen::Vector3d normal;    ///< outward unit normal
+    Eigen::Vector3d direction; ///< `A^{-1} n / |A^{-1} n|`, in the frame's (rotation) space
+    double metric_area;        ///< area measured in the metric
+  };
+
+  /// Prepares the field: cells, neighbours, weights and boundary data.
+  /// \param field the metric field; it and its triangulation must outlive this object
+  /// \param cim the cell index map
+  /// \param vim the vertex index map
+  /// \throws Input_error if the domain's cell indices are not `0..n-1`, or
+  ///         the domain is empty
+  explicit Frame_field_3(const Metric_field& field, CellIndexMap cim = CellIndexMap(),
+                         VertexIndexMap vim = VertexIndexMap())
+      : field_(&field), cim_(cim), vim_(vim) {
+    const Triangulation& tr = field.triangulation();
+    if (tr.dimension() != 3) throw Input_error("", 0, "", "the triangulation is not three-dimensional");
+    std::size_t n = 0;
+    for (Cell_handle c : tr.finite_cell_handles())
+      if (get(cim_, c) >= 0) ++n;
+    if (n == 0) throw Input_error("", 0, "", "the mesh has no tetrahedra in its domain");
+    cells_.assign(n, Cell_handle());
+    for (Cell_handle c : tr.finite_cell_handles()) {
+      const std::int64_t k = get(cim_, c);
+      if (k < 0) continue;
+      if (std::size_t(k) >= n || cells_[k] != Cell_handle())
+        throw Input_error("", 0, "tetrahedron " + std::to_string(k + 1),
+                          "cell indices of the domain must be exactly 0.." + std::to_string(n - 1));
+      cells_[k] = c;
+    }
+    stats_.tets = n;
+  }
+
+  /// Computes the field: set-up, face transports, linear initialisation,
+  /// projection, refinement (see the class documentation).
+  /// \param options the options
+  /// \returns the statistics (also kept, see `statistics()`)
+  const Frame_field_statistics& compute(const Frame_field_options& options = {}) {
+    prepare(options);
+    Timer t;
+    linear_initialisation();
+    stats_.seconds_linear = t.lap();
+    report("linear initialisation", stats_.seconds_linear,
+           std::to_string(stats_.linear_iterations) + " CG iterations, residual " + format(stats_.linear_residual));
+    project();
+    stats_.projected_energy = smoothness_energy();
+    stats_.seconds_projection = t.lap();
+    report("projection", stats_.seconds_projection, "energy " + format(stats_.projected_energy));
+    refine();
+    stats_.smoothness_energy = smoothness_energy();
+    stats_.seconds_refinement = t.lap();
+    report("refinement", stats_.seconds_refinement,
+           std::to_string(stats_.refinement_iterations) + " L-BFGS iterations, energy " +
+               format(stats_.smoothness_energy));
+    measure();
+    return stats_;
+  }
+
+  /// The first two stages of `compute()`: the geometry, weights and boundary
+  /// data, and the face transports. `compute()` calls it; call it directly
+  /// only before `set_rotations()`. Does nothing if already done.
+  /// \param options the options (boundary weight and transport tolerance are used)
+  void prepare(const Frame_field_options& options = {}) {
+    opt_ = options;
+    if (prepared_) return;
+    Timer t;
+    setup();
+    stats_.seconds_setup = t.lap();
+    report("set-up", stats_.seconds_setup,
+           std::to_string(stats_.tets) + " tets, " + std::to_string(stats_.interior_faces) + " interior and " +
+               std::to_string(stats_.boundary_faces) + " boundary faces");
+    compute_transports();
+    stats_.seconds_transports = t.lap();
+    report("face transports", stats_.seconds_transports,
+           std::to_string(stats_.identity_transports) + " exactly identity, largest angle " +
+               format(stats_.max_transport_angle * 180 / M_PI) + " deg");
+    prepared_ = true;
+  }
+
+  /// Replaces the frames by given rotations (e.g. to analyse a field made
+  /// elsewhere with `singular_edges()` and the measures here), without any
+  /// optimisation, and updates the energy and alignment statistics.
+  /// \tparam Rotation_of a callable `Eigen::Matrix3d(std::size_t i)`
+  /// \param rotation_of the rotation `R_i` of each tetrahedron (a rotation matrix)
+  template <class Rotation_of>
+  void set_rotations(Rotation_of rotation_of) {
+    prepare(opt_);
+    q_.assign(size(), Eigen::Quaterniond::Identity());
+    s_.assign(size(), Sh_vector::Zero());
+    for (std::size_t i = 0; i < size(); ++i) {
+      q_[i] = Eigen::Quaterniond(Eigen::Matrix3d(rotation_of(i))).normalized();
+      s_[i] = rotate_sh(q_[i], octahedral_reference_sh());
+    }
+    stats_.smoothness_energy = smoothness_energy();
+    measure();
+  }
+
+  /// The statistics of the last `compute()`.
+  const Frame_field_statistics& statistics() const { return stats_; }
+
+  /// The number of tetrahedra (frames).
+  std::size_t size() const { return cells_.size(); }
+  /// The metric field.
+  const Metric_field& metric_field() const { return *field_; }
+  /// The cell of tetrahedron `i`.
+  /// \param i a tetrahedron index
+  Cell_handle cell(std::size_t i) const { return cells_[i]; }
+  /// The tetrahedron index of a domain cell, or -1.
+  /// \param c a cell
+  std::int64_t index(Cell_handle c) const { return get(cim_, c); }
+  /// The 0-based index of a vertex.
+  /// \param v a finite vertex
+  std::size_t vertex_index(Vertex_handle v) const { return get(vim_, v); }
+
+  /// The rotation `R_i`, as `canonicalize_frame()` (a deterministic
+  /// representative of `{R_i G}`).
+  /// \param i a tetrahedron index
+  Eigen::Matrix3d rotation(std::size_t i) const { return canonicalize_frame(q_[i].toRotationMatrix()); }
+  /// The frame `F_i = A_i^{-1} R_i`: columns are the three hex edge vectors,
+  /// of unit length in the metric at the centroid.
+  /// \param i a tetrahedron index
+  Eigen::Matrix3d frame(std::size_t i) const { return A_[i].inverse() * rotation(i); }
+  /// `A = g^{1/2}` at the centroid of tetrahedron `i`.
+  /// \param i a tetrahedron index
+  const Eigen::Matrix3d& sqrt_metric(std::size_t i) const { return A_[i]; }
+  /// The SH vector `s_i = D(R_i) s0` of tetrahedron `i`.
+  /// \param i a tetrahedron index
+  const Sh_vector& sh(std::size_t i) const { return s_[i]; }
+  /// The centroid of tetrahedron `i`.
+  /// \param i a tetrahedron index
+  const Eigen::Vector3d& centroid(std::size_t i) const { return centroid_[i]; }
+  /// The neighbour of tetrahedron `i` across its facet `f` (opposite
+  /// `cell(i)->vertex(f)`), or -1 on the boundary.
+  /// \param i a tetrahedron index
+  /// \param f a facet index in 0..3
+  std::int64_t neighbor(std::size_t i, int f) const { return links_[i].nb[f]; }
+  /// The transport `T(j->i)` from the neighbour `j = neighbor(i, f)` into
+  /// tetrahedron `i` (identity on the boundary).
+  /// \param i a tetrahedron index
+  /// \param f a facet index in 0..3
+  Eigen::Matrix3d transport_into(std::size_t i, int f) const {
+    return links_[i].identity[f] ? Eigen::Matrix3d::Identity() : links_[i].T_in[f].toRotationMatrix();
+  }
+  /// Half the smoothness energy density at tetrahedron `i`:
+  /// `sum_f w_f |s_i - D(T(j->i)) s_j|^2 / 2` over its interior faces, divided
+  /// by its volume (so that it sums, times the volumes, to the energy).
+  /// \param i a tetrahedron index
+  double energy_density(std::size_t i) const { return 0.5 * local_smoothness(i) / volume_[i]; }
+  /// The boundary faces, in tetrahedron order.
+  const std::vector<Boundary_face>& boundary_faces() const { return boundary_; }
+  /// The alignment error of a boundary face in degrees: the angle between
+  /// `d` and the nearest of `+-R e_k`.
+  /// \param b a boundary face
+  double alignment_error_deg(const Boundary_face& b) const {
+    const Eigen::Matrix3d R = q_[b.tet].toRotationMatrix();
+    const double c = (R.transpose() * b.direction).cwiseAbs().maxCoeff();
+    return std::acos(std::min(1.0, c)) * 180 / M_PI;
+  }
+  /// The smoothness energy `sum_f w_f |s_j - D(T(i->j)) s_i|^2` of the current frames.
+  double smoothness_energy() const {
+    return 0.5 * internal::deterministic_sum(size(), [&](std::size_t b, std::size_t e) {
+             double s = 0;
+             for (std::size_t i = b; i < e; ++i) s += local_smoothness(i);
+             return s;
+           });
+  }
+
+private:
+  struct Timer {
+    std::chrono::steady_clock::time_point last = std::chrono::steady_clock::now();
+    double lap() {
+      const auto now = std::chrono::steady_clock::now();
+      const double s = std::chrono::duration<double>(now - last).count();
+      last = now;
+      return s;
+    }
+  };
+  // Per tetrahedron and local facet: neighbour (-1 on the boundary), face
+  // weight, and the transport from the neighbour into this tetrahedron.
+  struct Links {
+    std::array<std::int64_t, 4> nb;
+    std::array<double, 4> w;
+    std::array<Eigen::Quaterniond, 4> T_in;
+    std::array<bool, 4> identity;
+  };
+  // A boundary tetrahedron: the soft term s^T B s - 2 b.s + c, the block
+  // preconditioner's inverse, and the hard constraint (0, 1 or 2 axes).
+  struct Constraint {
+    Sh_matrix B = Sh_matrix::Zero();
+    Sh_vector b = Sh_vector::Zero();
+    double c = 0;
+    Sh_matrix preconditioner;
+    int axes = 0;
+    Eigen::Vector3d d1 = Eigen::Vector3d::Zero(), d2 = Eigen::Vector3d::Zero();
+  };
+
+  static std::string format(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4g", x);
+    return buf;
+  }
+  void report(const char* stage, double seconds, const std::string& detail) const {
+    if (opt_.progress) opt_.progress(stage, seconds, detail);
+  }
+  static Eigen::Vector3d vec(const Point_3& p) {
+    return Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+  }
+  static Point_3 point(const Eigen::Vector3d& v) { return Point_3(v(0), v(1), v(2)); }
+  // The facet's centroid, area vector direction (outward of c) and area.
+  static void facet_geometry(Cell_handle c, int f, Eigen::Vector3d& centroid, Eigen::Vector3d& normal, double& area) {
+    // CGAL: the vertices (f+1, f+2, f+3) seen from vertex f; for a positive
+    // cell, vertex_triple_index orders them so that the normal points out.
+    Eigen::Vector3d p[3];
+    for (int k = 0; k < 3; ++k) p[k] = vec(c->vertex(Triangulation::vertex_triple_index(f, k))->point());
+    centroid = (p[0] + p[1] + p[2]) / 3;
+    const Eigen::Vector3d a = (p[1] - p[0]).cross(p[2] - p[0]);
+    area = 0.5 * a.norm();
+    normal = a.normalized();
+    const Eigen::Vector3d opposite = vec(c->vertex(f)->point());
+    if (normal.dot(opposite - p[0]) > 0) normal = -normal; // outward whatever the convention
+  }
+  static double metric_area(const Eigen::Matrix3d& A, const Eigen::Vector3d& n, double area) {
+    // Nanson: the image of the area vector a n under x -> A x is det(A) A^{-T} a n.
+    return A.determinant() * (A.inverse().transpose() * n).norm() * area;
+  }
+
+  void setup() {
+    const std::size_t n = size();
+    links_.assign(n, Links());
+    A_.assign(n, Eigen::Matrix3d::Identity());
+    centroid_.assign(n, Eigen::Vector3d::Zero());
+    volume_.assign(n, 0.0);
+    constraint_of_.assign(n, -1);
+    internal::parallel_for_each_index(n, [&](std::size_t i) {
+      const Cell_handle c = cells_[i];
+      Eigen::Vector3d p[4];
+      for (int k = 0; k < 4; ++k) p[k] = vec(c->vertex(k)->point());
+      centroid_[i] = (p[0] + p[1] + p[2] + p[3]) / 4;
+      volume_[i] = std::abs((p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0]))) / 6;
+      A_[i] = field_->A_at(c, point(centroid_[i]));
+    });
+    internal::parallel_for_each_index(n, [&](std::size_t i) {
+      const Cell_handle c = cells_[i];
+      Links& L = links_[i];
+      for (int f = 0; f < 4; ++f) {
+        const Cell_handle nc = c->neighbor(f);
+        const std::int64_t j = field_->triangulation().is_infinite(nc) ? -1 : get(cim_, nc);
+        L.nb[f] = j;
+        L.identity[f] = true;
+        L.T_in[f] = Eigen::Quaterniond::Identity();
+        Eigen::Vector3d fc, nrm;
+        double area;
+        facet_geometry(c, f, fc, nrm, area);
+        const Eigen::Matrix3d Af = field_->A_at(c, point(fc));
+        const double ma = metric_area(Af, nrm, area);
+        if (j >= 0) {
+          // Computed identically from both sides up to the order of the
+          // centroid difference: use the smaller index's view.
+          const std::size_t lo = std::min<std::size_t>(i, j), hi = std::max<std::size_t>(i, j);
+          const double dist = (Af * (centroid_[hi] - centroid_[lo])).norm();
+          L.w[f] = ma / dist;
+        } else {
+          L.w[f] = (Af * (fc - centroid_[i])).norm(); // the distance, turned into a weight below
+        }
+      }
+    });
+    // Interior weights must be symmetric: A_at of the face from either cell
+    // agrees up to rounding; take the smaller index's value.
+    for (std::size_t i = 0; i < n; ++i)
+      for (int f = 0; f < 4; ++f) {
+        const std::int64_t j = links_[i].nb[f];
+        if (j >= 0 && std::size_t(j) < i) links_[i].w[f] = links_[j].w[cells_[j]->index(cells_[i])];
+      }
+    // Boundary faces and constraints, in tetrahedron order.
+    boundary_.clear();
+    constraints_.clear();
+    stats_.interior_faces = stats_.boundary_faces = stats_.hard_one_axis = stats_.hard_two_axes = 0;
+    stats_.total_face_weight = 0;
+    const Sh_vector s0 = octahedral_reference_sh();
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t first = boundary_.size();
+      for (int f = 0; f < 4; ++f) {
+        if (links_[i].nb[f] >= 0) {
+          if (std::size_t(links_[i].nb[f]) > i) {
+            ++stats_.interior_faces;
+            stats_.total_face_weight += links_[i].w[f];
+          }
+          continue;
+        }
+        Eigen::Vector3d fc, nrm;
+        double area;
+        facet_geometry(cells_[i], f, fc, nrm, area);
+        const Eigen::Matrix3d Af = field_->A_at(cells_[i], point(fc));
+        Boundary_face bf;
+        bf.tet = i;
+        bf.facet = f;
+        bf.normal = nrm;
+        bf.direction = Af.inverse() * nrm;
+        bf.direction.normalize();
+        bf.metric_area = metric_area(Af, nrm, area);
+        const double dist = links_[i].w[f];
+        links_[i].w[f] = opt_.boundary_weight * bf.metric_area / dist;
+        boundary_.push_back(bf);
+      }
+      if (boundary_.size() == first) continue;
+      Constraint C;
+      for (std::size_t k = first; k < boundary_.size(); ++k) {
+        const Boundary_face& bf = boundary_[k];
+        const double w = links_[i].w[bf.facet];
+        const Sh_matrix D = sh_rotation(Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), bf.direction));
+        Sh_matrix M = Sh_matrix::Identity();
+        M(0, 0) = M(8, 8) = 0; // m = +-4 are free (rotation about d)
+        C.B += w * D * M * D.transpose();
+        C.b += w * s0(4) * D.col(4);
+        C.c += w * s0(4) * s0(4);
+      }
+      // Hard axes: the largest metric area first, then a face more than 30
+      // degrees away from it.
+      std::vector<std::size_t> order;
+      for (std::size_t k = first; k < boundary_.size(); ++k) order.push_back(k);
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return boundary_[a].metric_area > boundary_[b].metric_area;
+      });
+      C.d1 = boundary_[order[0]].direction;
+      C.axes = 1;
+      for (std::size_t k = 1; k < order.size(); ++k) {
+        const Eigen::Vector3d& d = boundary_[order[k]].direction;
+        if (std::abs(d.dot(C.d1)) < std::cos(M_PI / 6)) {
+          C.d2 = (d - d.dot(C.d1) * C.d1).normalized();
+          C.axes = 2;
+          break;
+        }
+      }
+      if (opt_.hard_boundary) ++(C.axes == 2 ? stats_.hard_two_axes : stats_.hard_one_axis);
+      constraint_of_[i] = std::int64_t(constraints_.size());
+      constraints_.push_back(C);
+    }
+    stats_.boundary_faces = boundary_.size();
+    // Block-Jacobi preconditioner: (sum of the face weights) I + B.
+    diagonal_.assign(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      double s = 0;
+      for (int f = 0; f < 4; ++f)
+        if (links_[i].nb[f] >= 0) s += links_[i].w[f];
+      diagonal_[i] = s;
+      if (constraint_of_[i] >= 0) {
+        Constraint& C = constraints_[constraint_of_[i]];
+        const Sh_matrix H = s * Sh_matrix::Identity() + C.B;
+        C.preconditioner = H.llt().solve(Sh_matrix::Identity());
+      }
+    }
+  }
+
+  void compute_transports() {
+    const std::size_t n = size();
+    Transport_options topt;
+    topt.tolerance = opt_.transport_tolerance;
+    topt.scheme = opt_.transport_scheme;
+    std::vector<double> max_angle(n, 0.0);
+    // The smaller index of each face computes T(i->j) and writes both sides;
+    // no other thread touches those two slots.
+    internal::parallel_for_each_index(n, [&](std::size_t i) {
+      const Cell_handle c = cells_[i];
+      for (int f = 0; f < 4; ++f) {
+        const std::int64_t j = links_[i].nb[f];
+        if (j < 0 || std::size_t(j) < i) continue;
+        const Cell_handle cj = cells_[j];
+        Eigen::Vector3d fc, nrm;
+        double area;
+        facet_geometry(c, f, fc, nrm, area);
+        const Point_3 pf = point(fc);
+        const Transport_result a = cell_transport(*field_, c, point(centroid_[i]), pf, topt);
+        const Transport_result b = cell_transport(*field_, cj, pf, point(centroid_[j]), topt);
+        const Eigen::Matrix3d T = b.rotation * a.rotation; // T(i->j), pieces left-multiplied
+        const int fj = cj->index(c);
+        if (T == Eigen::Matrix3d::Identity()) continue; // both slots stay identity
+        const Eigen::Quaterniond q(T);
+        links_[j].T_in[fj] = q.normalized();
+        links_[j].identity[fj] = false;
+        links_[i].T_in[f] = q.conjugate().normalized();
+        links_[i].identity[f] = false;
+        max_angle[i] = std::max(max_angle[i], rotation_angle(T));
+      }
+    });
+    stats_.identity_transports = 0;
+    stats_.max_transport_angle = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      stats_.max_transport_angle = std::max(stats_.max_transport_angle, max_angle[i]);
+      for (int f = 0; f < 4; ++f)
+        if (links_[i].nb[f] > std::int64_t(i) && links_[i].identity[f]) ++stats_.identity_transports;
+    }
+  }
+
+  // D(T(j->i)) s_j for the neighbour across facet f of i.
+  Sh_vector neighbour_sh(std::size_t i, int f, const std::vector<Sh_vector>& s) const {
+    const Links& L = links_[i];
+    const Sh_vector& sj = s[L.nb[f]];
+    return L.identity[f] ? sj : rotate_sh(L.T_in[f], sj);
+  }
+
+  // y = H x for the linear initialisation (half the Hessian of the quadratic energy).
+  void apply_linear(const std::vector<Sh_vector>& x, std::vector<Sh_vector>& y) const {
+    internal::parallel_for_each_index(size(), [&](std::size_t i) {
+      const Links& L = links_[i];
+      Sh_vector r = diagonal_[i] * x[i];
+      for (int f = 0; f < 4; ++f)
+        if (L.nb[f] >= 0) r -= L.w[f] * neighbour_sh(i, f, x);
+      if (constraint_of_[i] >= 0) r += constraints_[constraint_of_[i]].B * x[i];
+      y[i] = r;
+    });
+  }
+  Sh_vector precondition(std::size_t i, const Sh_vector& r) const {
+    if (constraint_of_[i] >= 0) return constraints_[constraint_of_[i]].preconditioner * r;
+    return diagonal_[i] > 0 ? Sh_vector(r / diagonal_[i]) : r;
+  }
+  double dot(const std::vector<Sh_vector>& a, const std::vector<Sh_vector>& b) const {
+    return internal::deterministic_sum(size(), [&](std::size_t first, std::size_t last) {
+      double s = 0;
+      for (std::size_t i = first; i < last; ++i) s += a[i].dot(b[i]);
+      return s;
+    });
+  }
+
+  void linear_initialisation() {
+    const std::size_t n = size();
+    std::vector<Sh_vector> x(n, Sh_vector::Zero()), r(n, Sh_vector::Zero()), z(n), p(n), Ap(n);
+    for (std::size_t i = 0; i < n; ++i)
+      if (constraint_of_[i] >= 0) r[i] = constraints_[constraint_of_[i]].b;
+    const double bnorm = std::sqrt(dot(r, r));
+    stats_.linear_iterations = 0;
+    stats_.linear_residual = 0;
+    if (bnorm > 0) {
+      internal::parallel_for_each_index(n, [&](std::size_t i) { z[i] = precondition(i, r[i]); p[i] = z[i]; });
+      double rz = dot(r, z);
+      double rnorm = bnorm;
+      int it = 0;
+      for (; it < opt_.max_linear_iterations && rnorm > opt_.linear_tolerance * bnorm; ++it) {
+        apply_linear(p, Ap);
+        const double alpha = rz / dot(p, Ap);
+        internal::parallel_for_each_index(n, [&](std::size_t i) {
+          x[i] += alpha * p[i];
+          r[i] -= alpha * Ap[i];
+          z[i] = precondition(i, r[i]);
+        });
+        const double rz_new = dot(r, z);
+        const double beta = rz_new / rz;
+        rz = rz_new;
+        internal::parallel_for_each_index(n, [&](std::size_t i) { p[i] = z[i] + beta * p[i]; });
+        rnorm = std::sqrt(dot(r, r));
+      }
+      stats_.linear_iterations = it;
+      stats_.linear_residual = rnorm / bnorm;
+    }
+    s_ = std::move(x);
+  }
+
+  // Turns R so that its axes satisfy the hard constraint C exactly.
+  static Eigen::Quaterniond snap(const Eigen::Quaterniond& q, const Constraint& C) {
+    Eigen::Matrix3d R = q.toRotationMatrix();
+    const Eigen::Vector3d c1 = R.transpose() * C.d1;
+    int k;
+    c1.cwiseAbs().maxCoeff(&k);
+    const Eigen::Vector3d a = (c1(k) < 0 ? -1.0 : 1.0) * R.col(k);
+    Eigen::Quaterniond out = Eigen::Quaterniond::FromTwoVectors(a, C.d1) * q;
+    if (C.axes == 2) {
+      R = out.toRotationMatrix();
+      int k2 = -1;
+      double best = -1;
+      for (int m = 0; m < 3; ++m) {
+        if (m == k) continue;
+        const double v = std::abs(R.col(m).dot(C.d2));
+        if (v > best) best = v, k2 = m;
+      }
+      const Eigen::Vector3d b = (R.col(k2).dot(C.d2) < 0 ? -1.0 : 1.0) * R.col(k2);
+      const double angle = std::atan2(b.cross(C.d2).dot(C.d1), b.dot(C.d2));
+      out = Eigen::Quaterniond(Eigen::AngleAxisd(angle, C.d1)) * out;
+    }
+    return out.normalized();
+  }
+
+  void project() {
+    const std::size_t n = size();
+    q_.assign(n, Eigen::Quaterniond::Identity());
+    std::vector<char> degenerate(n, 0);
+    internal::parallel_for_each_index(n, [&](std::size_t i) {
+      if (!(s_[i].norm() > 1e-9)) {
+        degenerate[i] = 1;
+      } else {
+        q_[i] = Eigen::Quaterniond(rotation_from_octahedral_sh(s_[i]).rotation);
+      }
+      if (opt_.hard_boundary && constraint_of_[i] >= 0) q_[i] = snap(q_[i], constraints_[constraint_of_[i]]);
+      s_[i] = rotate_sh(q_[i], octahedral_reference_sh());
+    });
+    stats_.degenerate_projections = std::count(degenerate.begin(), degenerate.end(), 1);
+  }
+
+  // sum_f w_f |s_i - D(T(j->i)) s_j|^2 over the interior faces of i.
+  double local_smoothness(std::size_t i) const {
+    double e = 0;
+    for (int f = 0; f < 4; ++f)
+      if (links_[i].nb[f] >= 0) e += links_[i].w[f] * (s_[i] - neighbour_sh(i, f, s_)).squaredNorm();
+    return e;
+  }
+
+  // The refinement energy (smoothness + soft boundary terms) and its gradient
+  // in the left-trivialised rotation increments, projected on the free axes.
+  double energy_and_gradient(const std::vector<Sh_vector>& s, std::vector<Eigen::Vector3d>* g) const {
+    return internal::deterministic_sum(size(), [&](std::size_t first, std::size_t last) {
+      double e = 0;
+      for (std::size_t i = first; i < last; ++i) {
+        const Links& L = links_[i];
+        Sh_vector grad = Sh_vector::Zero();
+        for (int f = 0; f < 4; ++f) {
+          if (L.nb[f] < 0) continue;
+          const Sh_vector r = s[i] - neighbour_sh(i, f, s);
+          e += 0.5 * L.w[f] * r.squaredNorm(); // each face seen from both sides
+          grad += (2 * L.w[f]) * r;
+        }
+        const std::int64_t k = constraint_of_[i];
+        if (k >= 0) {
+          const Constraint& C = constraints_[k];
+          const Sh_vector Bs = C.B * s[i];
+          e += s[i].dot(Bs) - 2 * C.b.dot(s[i]) + C.c;
+          grad += 2 * (Bs - C.b);
+        }
+        if (g) {
+          Eigen::Vector3d gi = sh_rotation_jacobian(s[i]).transpose() * grad;
+          if (opt_.hard_boundary && k >= 0) {
+            const Constraint& C = constraints_[k];
+            gi = C.axes == 2 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(gi.dot(C.d1) * C.d1);
+          }
+          (*g)[i] = gi;
+        }
+      }
+      return e;
+    });
+  }
+
+  double vdot(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b) const {
+    return internal::deterministic_sum(size(), [&](std::size_t first, std::size_t last) {
+      double s = 0;
+      for (std::size_t i = first; i < last; ++i) s += a[i].dot(b[i]);
+      return s;
+    });
+  }
+
+  void refine() {
+    const std::size_t n = size();
+    stats_.refinement_iterations = 0;
+    stats_.energy_evaluations = 0;
+    if (opt_.max_refinement_iterations <= 0) return;
+    const Sh_vector s0 = octahedral_reference_sh();
+    std::vector<Eigen::Vector3d> g(n), g_new(n), p(n);
+    double E = energy_and_gradient(s_, &g);
+    ++stats_.energy_evaluations;
+    const double floor_energy = 1e-14 * std::max(stats_.total_face_weight, 1e-300);
+    const int m = std::max(1, opt_.lbfgs_memory);
+    std::vector<std::vector<Eigen::Vector3d>> S, Y; // history
+    std::vector<double> rho;
+    std::vector<Eigen::Quaterniond> q_new(n);
+    std::vector<Sh_vector> s_new(n);
+    int small_steps = 0;
+    for (int it = 0; it < opt_.max_refinement_iterations; ++it) {
+      if (E <= floor_energy) break;
+      // Two-loop recursion: p = -H g.
+      internal::parallel_for_each_index(n, [&](std::size_t i) { p[i] = -g[i]; });
+      const int h = int(S.size());
+      std::vector<double> alpha(h);
+      for (int k = h - 1; k >= 0; --k) {
+        alpha[k] = rho[k] * vdot(S[k], p);
+        const double a = alpha[k];
+        internal::parallel_for_each_index(n, [&](std::size_t i) { p[i] -= a * Y[k][i]; });
+      }
+      if (h > 0) {
+        const double gamma = vdot(S[h - 1], Y[h - 1]) / vdot(Y[h - 1], Y[h - 1]);
+        internal::parallel_for_each_index(n, [&](std::size_t i) { p[i] *= gamma; });
+      }
+      for (int k = 0; k < h; ++k) {
+        const double beta = rho[k] * vdot(Y[k], p);
+        const double a = alpha[k] - beta;
+        internal::parallel_for_each_index(n, [&](std::size_t i) { p[i] += a * S[k][i]; });
+      }
+      double slope = vdot(g, p);
+      if (!(slope < 0)) { // not a descent direction: restart from the gradient
+        S.clear(), Y.clear(), rho.clear();
+        internal::parallel_for_each_index(n, [&](std::size_t i) { p[i] = -g[i]; });
+        slope = vdot(g, p);
+        if (!(slope < 0)) break; // zero gradient
+      }
+      // First step (no curvature information): at most 0.1 rad per frame.
+      double step = 1;
+      if (S.empty()) {
+        double pmax = 0;
+        for (std::size_t i = 0; i < n; ++i) pmax = std::max(pmax, p[i].norm());
+        step = std::min(1.0, 0.1 / pmax);
+      }
+      double E_new = E;
+      bool accepted = false;
+      for (int ls = 0; ls < 40; ++ls) {
+        internal::parallel_for_each_index(n, [&](std::size_t i) {
+          q_new[i] = (internal::oct_quaternion_exp(step * p[i]) * q_[i]).normalized();
+          s_new[i] = rotate_sh(q_new[i], s0);
+        });
+        E_new = energy_and_gradient(s_new, &g_new);
+        ++stats_.energy_evaluations;
+        if (E_new <= E + 1e-4 * step * slope) {
+          accepted = true;
+          break;
+        }
+        step *= 0.5;
+      }
+      if (!accepted) break;
+      ++stats_.refinement_iterations;
+      std::vector<Eigen::Vector3d> sk(n), yk(n);
+      internal::parallel_for_each_index(n, [&](std::size_t i) {
+        sk[i] = step * p[i];
+        yk[i] = g_new[i] - g[i];
+      });
+      const double sy = vdot(sk, yk);
+      if (sy > 1e-12 * std::sqrt(vdot(sk, sk) * vdot(yk, yk))) {
+        if (int(S.size()) == m) S.erase(S.begin()), Y.erase(Y.begin()), rho.erase(rho.begin());
+        S.push_back(std::move(sk));
+        Y.push_back(std::move(yk));
+        rho.push_back(1 / sy);
+      }
+      std::swap(q_, q_new);
+      std::swap(s_, s_new);
+      std::swap(g, g_new);
+      const double decrease = E - E_new;
+      E = E_new;
+      small_steps = decrease <= opt_.energy_tolerance * E ? small_steps + 1 : 0;
+      if (small_steps >= 3) break;
+    }
+    if (opt_.hard_boundary) // undo the rounding drift of the constrained axes
+      internal::parallel_for_each_index(n, [&](std::size_t i) {
+        if (constraint_of_[i] >= 0) {
+          q_[i] = snap(q_[i], constraints_[constraint_of_[i]]);
+          s_[i] = rotate_sh(q_[i], s0);
+        }
+      });
+  }
+
+  void measure() {
+    double sum = 0, mx = 0;
+    for (const Boundary_face& b : boundary_) {
+      const double e = alignment_error_deg(b);
+      sum += e;
+      mx = std::max(mx, e);
+    }
+    stats_.boundary_error_mean_deg = boundary_.empty() ? 0 : sum / double(boundary_.size());
+    stats_.boundary_error_max_deg = mx;
+    double worst = 0;
+    for (std::size_t i = 0; i < size(); ++i) {
+      const Eigen::Matrix3d F = frame(i);
+      const Eigen::Matrix3d g = A_[i] * A_[i];
+      worst = std::max(worst, (F.transpose() * g * F - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff());
+    }
+    stats_.max_orthonormality_error = worst;
+  }
+
+  const Metric_field* field_;
+  CellIndexMap cim_;
+  VertexIndexMap vim_;
+  Frame_field_options opt_;
+  Frame_field_statistics stats_;
+  std::vector<Cell_handle> cells_;
+  std::vector<Links> links_;
+  std::vector<Eigen::Matrix3d> A_;
+  std::vector<Eigen::Vector3d> centroid_;
+  std::vector<double> volume_, diagonal_;
+  std::vector<Boundary_face> boundary_;
+  std::vector<Constraint> constraints_;
+  std::vector<std::int64_t> constraint_of_;
+  std::vector<Sh_vector> s_;
+  std::vector<Eigen::Quaterniond> q_;
+  bool prepared_ = false;
+};
+
+} // namespace CGAL_ext
+
+#endif // CGAL_EXT_FRAME_FIELD_3_H

@@ -1,0 +1,141 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_EXT_TETRAHEDRALIZE_H
+#define CGAL_EXT_TETRAHEDRALIZE_H
+
+/// \file tetrahedralize.h
+/// Tetrahedral meshing of the inside of a closed surface, or of a built-in
+/// shape, with CGAL Mesh_3. The header is free of CGAL: the meshing code is
+/// compiled once, in the library.
+
+#include <CGAL_ext/IO/Medit_mesh.h>
+#include <CGAL_ext/Input_error.h>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace CGAL_ext {
+
+/// \ingroup PkgCGALExtMesh
+/// The parameters of `tetrahedralize_surface()` and `tetrahedralize_builtin()`.
+///
+/// Mesh_3's criteria are derived from `size` and `facet_distance`:
+/// `cell_size = facet_size = edge_size = size` (Mesh_3's sizes are bounds on
+/// the radii of the circumscribing and surface Delaunay balls, so that edges
+/// come out somewhat shorter than `size`: see doc/meshing.md),
+/// `facet_angle = 25` degrees, `cell_radius_edge_ratio = 3`.
+struct Tetrahedralize_options {
+  /// The target size (Mesh_3's `cell_size`, `facet_size` and, on sharp
+  /// edges, `edge_size`); 0 means automatic: the diagonal of the bounding
+  /// box of the domain divided by 20. Must be finite and not negative.
+  double size = 0;
+  /// The bound on the distance between the boundary facets and the input
+  /// surface (Mesh_3's `facet_distance`); 0 means automatic: `size / 10`.
+  /// Must be finite and not negative.
+  double facet_distance = 0;
+  /// For polyhedral domains (input surfaces and the built-in `box_with_hole`
+  /// and `cube`): detect the edges of the surface whose dihedral angle
+  /// differs from flat by more than 60 degrees, and protect them so that
+  /// the mesh keeps them sharp. Ignored by smooth (implicit) built-in shapes.
+  bool sharp_features = true;
+  /// The seed of the random numbers of CGAL used while meshing; the caller's
+  /// `CGAL::get_default_random()` is restored afterwards.
+  unsigned seed = 0;
+  /// Run the cheap optimizers, sliver perturbation and sliver exudation,
+  /// after the refinement (they remove most flat tetrahedra). The slow
+  /// global optimizers (Lloyd, ODT) are never run.
+  bool optimize = true;
+};
+
+/// \ingroup PkgCGALExtMesh
+/// What `tetrahedralize_surface()` and `tetrahedralize_builtin()` made.
+struct Tetrahedralize_report {
+  std::size_t vertices = 0;           ///< vertices of the mesh
+  std::size_t tets = 0;               ///< tetrahedra of the mesh
+  std::size_t boundary_triangles = 0; ///< boundary triangles of the mesh
+  double seconds = 0;                 ///< wall-clock time of the whole call, reading included
+  /// A one-line description of the domain and of the sizes used, e.g.
+  /// `surface 'part.off' (1200 vertices, 2396 triangles); size 0.17, facet
+  /// distance 0.017; sharp edges protected (60 degrees)`. Every repair made
+  /// to the input (orientation reversed, soup repaired, faces triangulated)
+  /// is listed here after `repaired:`; nothing is ever repaired silently
+  /// otherwise.
+  std::string domain;
+};
+
+/// \ingroup PkgCGALExtMesh
+/// Meshes the inside of the closed triangulated surface of a file with
+/// tetrahedra (CGAL `Polyhedral_mesh_domain_with_features_3` and
+/// `make_mesh_3`, sequential).
+///
+/// The surface may have several connected components (the inside is then
+/// what they bound together, e.g. a hollow ball). Faces with more than three
+/// vertices are triangulated. A surface whose faces all point inwards is
+/// reversed, and a file whose faces do not form a surface at once (an STL
+/// polygon soup, inconsistent orientations) is repaired with CGAL's polygon
+/// soup repair and orientation; both are listed in `report->domain`.
+///
+/// The output is deterministic: for the same file and options, the same
+/// mesh, bit for bit. Its vertices are numbered in Hilbert-curve order and its
+/// tetrahedra sorted by their vertex indices.
+///
+/// \param path the file; `.off`, `.obj`, `.stl` or `.ply` (any case)
+/// \param options the sizes and switches, see `Tetrahedralize_options`
+/// \param report if not null, receives the counts, the time and a description
+///   of the domain and of the repairs
+/// \returns the mesh: `vertices`; `tetrahedra`, each positively oriented
+///   (`CGAL::orientation(p0, p1, p2, p3) == CGAL::POSITIVE`), reference =
+///   subdomain index (1); `triangles`, the boundary facets of the
+///   tetrahedra, oriented with their normal pointing out of the domain,
+///   reference = surface patch (1, 2... in the order of CGAL's patch ids);
+///   `edges`, the protected sharp edges, reference = curve index;
+///   `vertex_references`, the dimension of the feature the vertex lies on:
+///   0 corner, 1 sharp edge, 2 surface, 3 inside. `vertex_lines` and
+///   `tetrahedron_lines` are empty.
+/// \throws Input_error naming the file for: a missing or unreadable file, an
+///   unsupported extension, a file that cannot be parsed, a surface without
+///   faces, a surface that is not a 2-manifold, a surface that is not closed
+///   (with the number of border edges), a self-intersecting surface, a
+///   surface that does not bound a volume even after reorientation, a
+///   negative or non-finite `size` or `facet_distance`, a `size` so small
+///   that the mesh would exceed 100 million tetrahedra, and a meshing that
+///   produced no tetrahedra.
+IO::Medit_mesh tetrahedralize_surface(const std::string& path, const Tetrahedralize_options& options = {},
+                                      Tetrahedralize_report* report = nullptr);
+
+/// \ingroup PkgCGALExtMesh
+/// Meshes one of the built-in shapes with tetrahedra, as
+/// `tetrahedralize_surface()` does (same output conventions, same
+/// determinism). The shapes are (`builtin_shape_names()`):
+///
+/// - `ball`: the unit ball (implicit domain, smooth);
+/// - `torus`: the torus of radii R = 1 and r = 0.4 around the z axis
+///   (implicit domain, smooth, genus 1);
+/// - `box_with_hole`: the box [-1,1] x [-1,1] x [-0.5,0.5] minus the
+///   cylinder of radius 0.4 around the z axis, the cylinder being a prism
+///   over a regular 96-gon (polyhedral domain; its 24 straight and 2
+///   circular sharp edges are protected when `sharp_features` is on);
+/// - `cube`: the cube [-1,1]^3 (polyhedral domain, 12 sharp edges);
+/// - `blobby`: a smooth union of four balls of different radii (implicit
+///   domain, genus 0, no symmetry).
+///
+/// \param name the shape's name
+/// \param options the sizes and switches, see `Tetrahedralize_options`
+/// \param report if not null, receives the counts, the time and a description
+/// \returns the mesh
+/// \throws Input_error for an unknown name (the message lists the valid
+///   names), a negative or non-finite `size` or `facet_distance`, a `size` so
+///   small that the mesh would exceed 100 million tetrahedra, and a meshing
+///   that produced no tetrahedra.
+IO::Medit_mesh tetrahedralize_builtin(const std::string& name, const Tetrahedralize_options& options = {},
+                                      Tetrahedralize_report* report = nullptr);
+
+/// \ingroup PkgCGALExtMesh
+/// The names accepted by `tetrahedralize_builtin()`, in alphabetical order.
+/// \returns `ball`, `blobby`, `box_with_hole`, `cube`, `torus`
+std::vector<std::string> builtin_shape_names();
+
+} // namespace CGAL_ext
+
+#endif // CGAL_EXT_TETRAHEDRALIZE_H

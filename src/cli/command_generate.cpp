@@ -1,0 +1,333 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// metric-frames generate: the whole pipeline, from a tet mesh (or a surface,
+// or a built-in shape, meshed with Mesh_3) and a metric to the frame field,
+// its singular edges and the files for ParaView and hex meshing.
+#include "cli_common.h"
+#include "commands.h"
+#include "metric_expression.h"
+#include "../IO/write_file_atomically.h"
+
+#include <CGAL_ext/Frame_field_3.h>
+#include <CGAL_ext/Frame_field_singularities_3.h>
+#include <CGAL_ext/IO/Fra_file.h>
+#include <CGAL_ext/IO/Medit_mesh.h>
+#include <CGAL_ext/IO/Medit_sol.h>
+#include <CGAL_ext/IO/Vtu_file.h>
+#include <CGAL_ext/Metric_field_3.h>
+#include <CGAL_ext/Metric_tensor.h>
+#include <CGAL_ext/build_triangulation_from_tets.h>
+#include <CGAL_ext/tetrahedralize.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <sstream>
+
+namespace CGAL_ext::cli {
+
+namespace {
+const char* generate_help =
+    "Usage: metric-frames generate INPUT [--metric SOL | --metric-const \"M\" | --metric-expr \"E\"]\n"
+    "                              [--size h] -o OUTDIR [--force] [options]\n\n"
+    "Generates a smooth octahedral frame field, aligned with the boundary, in a\n"
+    "Riemannian metric g (one frame per tetrahedron, F = A^-1 R with A = g^1/2),\n"
+    "finds its singular edges, and writes into OUTDIR:\n"
+    "  frames.fra          CubeCover frames, one per tet in mesh.mesh's order\n"
+    "  mesh.mesh           the tet mesh used (Medit)\n"
+    "  frames.vtu          for ParaView: tets with cell data frame_1..3, metric,\n"
+    "                      energy_density, boundary, alignment_error_deg\n"
+    "  singularities.vtu   singular edges as lines, with type, index and valence\n"
+    "  report.json         counts, energies, alignment, timings\n\n"
+    "INPUT is a Medit .mesh tet mesh, a closed surface (.off .obj .stl .ply) meshed\n"
+    "with CGAL Mesh_3 at size --size, or builtin:NAME (ball, torus, box_with_hole, ...).\n\n"
+    "Metric (default: the identity):\n"
+    "  --metric SOL          one tensor per vertex (Medit .sol, type 3 or type 1);\n"
+    "                        needs a .mesh INPUT with the same vertices\n"
+    "  --metric-const M      a constant tensor: 6 numbers m11 m21 m22 m31 m32 m33\n"
+    "                        (Medit order) or 3 numbers (the diagonal)\n"
+    "  --metric-expr E       6 formulas in x, y, z, comma-separated, as for\n"
+    "                        metric-frames metric --expr\n\n"
+    "Options:\n"
+    "  -o OUTDIR             output directory (created if missing)\n"
+    "  --force               replace output files that exist (never the input)\n"
+    "  --size h              target edge length for surface and builtin inputs\n"
+    "                        (default: bounding-box diagonal / 20)\n"
+    "  --boundary-weight W   weight of the soft boundary term (default 100)\n"
+    "  --soft-boundary       no hard boundary constraint after the projection\n"
+    "  --max-iterations N    L-BFGS iterations at most (default 1000)\n"
+    "  --tol T               face transport tolerance in radians (default 1e-6)\n"
+    "  --threads N           worker threads (default: all); outputs do not depend on N\n"
+    "  -h, --help            this help\n";
+
+const char* const output_names[] = {"frames.fra", "mesh.mesh", "frames.vtu", "singularities.vtu", "report.json"};
+
+Eigen::Matrix3d parse_constant_metric(Arguments& a, const std::string& text) {
+  std::string t = text;
+  std::replace(t.begin(), t.end(), ',', ' ');
+  std::istringstream in(t);
+  std::vector<double> v;
+  std::string word;
+  while (in >> word) {
+    char* end = nullptr;
+    const double x = std::strtod(word.c_str(), &end);
+    if (end == word.c_str() || *end != '\0')
+      a.fail("--metric-const '" + text + "': '" + word + "' is not a number");
+    v.push_back(x);
+  }
+  Eigen::Matrix3d g = Eigen::Matrix3d::Zero();
+  if (v.size() == 3) g = Eigen::Vector3d(v[0], v[1], v[2]).asDiagonal();
+  else if (v.size() == 6) g << v[0], v[1], v[3], v[1], v[2], v[4], v[3], v[4], v[5];
+  else a.fail("--metric-const '" + text + "': expected 6 numbers (m11 m21 m22 m31 m32 m33) or 3 (the diagonal), got " +
+              std::to_string(v.size()));
+  const std::string problem = check_metric_tensor(g);
+  if (!problem.empty()) a.fail("--metric-const '" + text + "': " + problem);
+  return g;
+}
+
+bool has_extension(const std::string& path, std::initializer_list<const char*> exts) {
+  std::string e = std::filesystem::path(path).extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  for (const char* x : exts)
+    if (e == x) return true;
+  return false;
+}
+
+std::string number(double x) {
+  char buf[32];
+  if (!std::isfinite(x)) return "null";
+  std::snprintf(buf, sizeof buf, "%.10g", x);
+  return buf;
+}
+
+} // namespace
+
+int command_generate(const std::vector<std::string>& args) {
+  Arguments a(args, "generate", generate_help);
+  if (a.help_requested()) return 0;
+  const auto sol_path = a.option("--metric");
+  const auto metric_const = a.option("--metric-const");
+  const auto metric_expr = a.option("--metric-expr");
+  const std::string out_dir = a.required_option("-o");
+  const bool force = a.flag("--force");
+  Tetrahedralize_options mesh_opt;
+  const auto size = a.option("--size");
+  if (size) mesh_opt.size = parse_positive(a, "--size", *size);
+  Frame_field_options opt;
+  if (const auto w = a.option("--boundary-weight")) opt.boundary_weight = parse_positive(a, "--boundary-weight", *w);
+  opt.hard_boundary = !a.flag("--soft-boundary");
+  if (const auto n = a.option("--max-iterations")) {
+    char* end = nullptr;
+    const long v = std::strtol(n->c_str(), &end, 10);
+    if (end == n->c_str() || *end != '\0' || v < 0 || v > 100000000)
+      a.fail("--max-iterations '" + *n + "': expected a whole number >= 0");
+    opt.max_refinement_iterations = int(v);
+  }
+  if (const auto t = a.option("--tol")) opt.transport_tolerance = parse_positive(a, "--tol", *t);
+  const auto threads = thread_limit(a);
+  const std::string input = a.positional("INPUT");
+  a.finish();
+  if (int(bool(sol_path)) + int(bool(metric_const)) + int(bool(metric_expr)) > 1)
+    a.fail("give at most one of --metric, --metric-const and --metric-expr");
+  const bool is_builtin = input.rfind("builtin:", 0) == 0;
+  const bool is_mesh = !is_builtin && has_extension(input, {".mesh"});
+  const bool is_surface = !is_builtin && has_extension(input, {".off", ".obj", ".stl", ".ply"});
+  if (!is_builtin && !is_mesh && !is_surface)
+    a.fail("INPUT '" + input + "': expected a .mesh tet mesh, a surface (.off .obj .stl .ply) or builtin:NAME");
+  if (size && is_mesh) a.fail("--size applies to surface and builtin inputs; a .mesh input is used as it is");
+  if (sol_path && !is_mesh)
+    a.fail("--metric SOL needs a .mesh INPUT: a generated mesh has no vertices the .sol could match");
+  std::unique_ptr<Metric_expression> formula;
+  if (metric_expr) formula = std::make_unique<Metric_expression>(*metric_expr, Metric_expression::Kind::tensor, "--metric-expr");
+  const Eigen::Matrix3d g_const = metric_const ? parse_constant_metric(a, *metric_const) : Eigen::Matrix3d::Identity();
+
+  // Nothing is written before every check passed; nothing the user gave is replaced.
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  for (const char* name : output_names) {
+    const fs::path p = fs::path(out_dir) / name;
+    if (!fs::exists(p, ec)) continue;
+    if (fs::equivalent(p, input, ec) || (sol_path && fs::equivalent(p, *sol_path, ec)))
+      throw std::runtime_error(p.string() + ": the output would overwrite an input file");
+    if (!force) throw std::runtime_error(p.string() + ": the file exists; give --force to replace the outputs");
+  }
+
+  Stage_timer timer;
+  std::map<std::string, double> stage_seconds;
+  auto stage = [&](const std::string& name, double seconds, const std::string& detail) {
+    std::fprintf(stderr, "[stage] %-22s %8.3f s  %s\n", name.c_str(), seconds, detail.c_str());
+    stage_seconds[name] = seconds;
+  };
+  auto clock = std::chrono::steady_clock::now();
+  auto lap = [&] {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - clock).count();
+    clock = now;
+    return s;
+  };
+
+  // 1. The tet mesh.
+  IO::Medit_mesh mesh;
+  if (is_mesh) {
+    mesh = IO::read_medit_mesh(input);
+    stage("read mesh", lap(), std::to_string(mesh.tetrahedra.size()) + " tets, " +
+                                   std::to_string(mesh.vertices.size()) + " vertices");
+  } else {
+    Tetrahedralize_report mr;
+    mesh = is_builtin ? tetrahedralize_builtin(input.substr(8), mesh_opt, &mr) : tetrahedralize_surface(input, mesh_opt, &mr);
+    stage("Mesh_3", lap(), std::to_string(mr.tets) + " tets, " + std::to_string(mr.vertices) + " vertices (" +
+                               mr.domain + ")");
+  }
+  using Tr = Tet_mesh_triangulation_3<>;
+  Tr tr;
+  Tet_soup_source src;
+  src.file = is_mesh ? input : std::string("generated mesh");
+  src.tet_lines = mesh.tetrahedron_lines;
+  src.vertex_lines = mesh.vertex_lines;
+  const Tet_mesh_build_report build =
+      build_triangulation_from_tets(mesh.vertices, mesh.tetrahedra, mesh.tetrahedron_references, tr, src);
+  if (build.reoriented_tets)
+    std::fprintf(stderr, "[note] %zu negatively oriented tetrahedra were re-oriented (first: tetrahedron %zu)\n",
+                 build.reoriented_tets, build.reoriented_examples.front() + 1);
+  if (build.unused_vertices) std::fprintf(stderr, "[note] %zu vertices are used by no tetrahedron\n", build.unused_vertices);
+  stage("build triangulation", lap(), std::to_string(build.boundary_facets) + " boundary facets");
+
+  // 2. The metric.
+  std::unique_ptr<Metric_field_3<Tr>> field;
+  std::string metric_name = "identity";
+  if (sol_path) {
+    field = std::make_unique<Metric_field_3<Tr>>(tr, IO::read_medit_sol(*sol_path, mesh.vertices.size()), *sol_path);
+    metric_name = *sol_path;
+  } else if (formula) {
+    field = std::make_unique<Metric_field_3<Tr>>(tr, evaluate_metric(*formula, mesh.vertices, "--metric-expr"));
+    metric_name = "expression " + *metric_expr;
+  } else {
+    field = std::make_unique<Metric_field_3<Tr>>(tr, g_const);
+    if (metric_const) metric_name = "constant " + *metric_const;
+  }
+  field->precompute();
+  stage("metric", lap(), metric_name);
+
+  // 3. The frame field and its singular edges.
+  opt.progress = stage;
+  Frame_field_3<Metric_field_3<Tr>> ff(*field);
+  const Frame_field_statistics& st = ff.compute(opt);
+  lap();
+  const std::vector<Singular_edge> sing = singular_edges(ff);
+  std::map<std::string, std::size_t> by_type = {{"+1/4", 0}, {"-1/4", 0}, {"1/2", 0}, {"other", 0}};
+  for (const Singular_edge& s : sing) ++by_type[singularity_type_name(s.type)];
+  stage("singular edges", lap(), std::to_string(sing.size()) + " singular edges");
+
+  // 4. The files.
+  fs::create_directories(out_dir, ec);
+  if (ec) throw std::runtime_error(out_dir + ": cannot create the output directory: " + ec.message());
+  const std::size_t nt = ff.size();
+  std::vector<std::array<double, 9>> frames(nt);
+  IO::Vtu_array f1{"frame_1", 3, {}}, f2{"frame_2", 3, {}}, f3{"frame_3", 3, {}}, gm{"metric", 9, {}},
+      density{"energy_density", 1, {}}, boundary{"boundary", 1, {}, true}, align{"alignment_error_deg", 1, {}};
+  std::vector<double> alignment(nt, 0.0);
+  std::vector<char> on_boundary(nt, 0);
+  for (const auto& b : ff.boundary_faces()) {
+    on_boundary[b.tet] = 1;
+    alignment[b.tet] = std::max(alignment[b.tet], ff.alignment_error_deg(b));
+  }
+  for (std::size_t i = 0; i < nt; ++i) {
+    const Eigen::Matrix3d F = ff.frame(i);
+    const Eigen::Matrix3d g = ff.sqrt_metric(i) * ff.sqrt_metric(i);
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) frames[i][3 * k + c] = F(c, k);
+    for (int c = 0; c < 3; ++c) f1.values.push_back(F(c, 0)), f2.values.push_back(F(c, 1)), f3.values.push_back(F(c, 2));
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) gm.values.push_back(g(r, c));
+    density.values.push_back(ff.energy_density(i));
+    boundary.values.push_back(on_boundary[i]);
+    align.values.push_back(alignment[i]);
+  }
+  const fs::path dir(out_dir);
+  IO::write_fra((dir / "frames.fra").string(), frames);
+  IO::write_medit_mesh((dir / "mesh.mesh").string(), mesh);
+  IO::write_vtu_tetrahedra((dir / "frames.vtu").string(), mesh.vertices, mesh.tetrahedra,
+                           {f1, f2, f3, gm, density, boundary, align});
+  {
+    std::vector<std::array<double, 3>> points;
+    std::vector<std::array<std::size_t, 2>> lines;
+    std::map<std::size_t, std::size_t> local;
+    IO::Vtu_array type{"type", 1, {}, true}, index{"index", 1, {}}, valence{"valence", 1, {}, true};
+    for (const Singular_edge& s : sing) {
+      std::array<std::size_t, 2> l;
+      for (int k = 0; k < 2; ++k) {
+        auto it = local.find(s.vertices[k]);
+        if (it == local.end()) {
+          it = local.emplace(s.vertices[k], points.size()).first;
+          points.push_back(mesh.vertices[s.vertices[k]]);
+        }
+        l[k] = it->second;
+      }
+      lines.push_back(l);
+      const int code = s.type == Singularity_type::plus_quarter ? 1 : s.type == Singularity_type::minus_quarter ? -1
+                       : s.type == Singularity_type::half ? 2 : 3;
+      type.values.push_back(code);
+      index.values.push_back(code == 1 ? 0.25 : code == -1 ? -0.25 : code == 2 ? 0.5 : std::nan(""));
+      valence.values.push_back(s.valence);
+    }
+    IO::Vtu_array vertex_id{"vertex_index", 1, {}, true};
+    vertex_id.values.resize(points.size());
+    for (const auto& [global, l] : local) vertex_id.values[l] = double(global + 1);
+    IO::write_vtu_segments((dir / "singularities.vtu").string(), points, lines, {type, index, valence}, {vertex_id});
+  }
+  stage("write outputs", lap(), out_dir);
+
+  std::ostringstream js;
+  js << "{\n"
+     << "  \"input\": \"" << json_escape(input) << "\",\n"
+     << "  \"metric\": \"" << json_escape(metric_name) << "\",\n"
+     << "  \"tets\": " << nt << ",\n"
+     << "  \"vertices\": " << mesh.vertices.size() << ",\n"
+     << "  \"interior_faces\": " << st.interior_faces << ",\n"
+     << "  \"boundary_faces\": " << st.boundary_faces << ",\n"
+     << "  \"singular_edges\": " << sing.size() << ",\n"
+     << "  \"singular_edges_by_type\": {\"+1/4\": " << by_type["+1/4"] << ", \"-1/4\": " << by_type["-1/4"]
+     << ", \"1/2\": " << by_type["1/2"] << ", \"other\": " << by_type["other"] << "},\n"
+     << "  \"smoothness_energy\": " << number(st.smoothness_energy) << ",\n"
+     << "  \"smoothness_energy_per_weight\": " << number(st.smoothness_energy / st.total_face_weight) << ",\n"
+     << "  \"projected_energy\": " << number(st.projected_energy) << ",\n"
+     << "  \"boundary_alignment_error_deg\": {\"mean\": " << number(st.boundary_error_mean_deg)
+     << ", \"max\": " << number(st.boundary_error_max_deg) << "},\n"
+     << "  \"g_orthonormality_max_error\": " << number(st.max_orthonormality_error) << ",\n"
+     << "  \"hard_boundary_tets\": {\"one_axis\": " << st.hard_one_axis << ", \"two_axes\": " << st.hard_two_axes << "},\n"
+     << "  \"max_transport_angle_deg\": " << number(st.max_transport_angle * 180 / M_PI) << ",\n"
+     << "  \"linear_iterations\": " << st.linear_iterations << ",\n"
+     << "  \"linear_residual\": " << number(st.linear_residual) << ",\n"
+     << "  \"refinement_iterations\": " << st.refinement_iterations << ",\n"
+     << "  \"stage_seconds\": {";
+  bool first = true;
+  for (const auto& [name, s] : stage_seconds) {
+    js << (first ? "" : ", ") << "\"" << json_escape(name) << "\": " << number(s);
+    first = false;
+  }
+  js << "}\n}\n";
+  const std::string report_path = (dir / "report.json").string();
+  const std::string text = js.str();
+  IO::internal::write_file_atomically(report_path, [&](std::FILE* f) {
+    if (std::fwrite(text.data(), 1, text.size(), f) != text.size()) throw std::runtime_error(report_path + ": write failed");
+  });
+  stage("write report", lap(), report_path);
+
+  std::fprintf(stderr,
+               "\n  %-32s %zu (%zu vertices)\n  %-32s %s\n  %-32s %.6g (per unit weight %.3g)\n"
+               "  %-32s mean %.3g, max %.3g\n  %-32s %.3g\n  %-32s %zu (+1/4: %zu, -1/4: %zu, 1/2: %zu, other: %zu)\n"
+               "  %-32s %s\n",
+               "tetrahedra", nt, mesh.vertices.size(), "metric", metric_name.c_str(), "smoothness energy",
+               st.smoothness_energy, st.smoothness_energy / st.total_face_weight, "boundary alignment error (deg)",
+               st.boundary_error_mean_deg, st.boundary_error_max_deg, "max |F^T g F - I|", st.max_orthonormality_error,
+               "singular edges", sing.size(), by_type["+1/4"], by_type["-1/4"], by_type["1/2"], by_type["other"],
+               "outputs", out_dir.c_str());
+  timer.summary();
+  return 0;
+}
+
+} // namespace CGAL_ext::cli

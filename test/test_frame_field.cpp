@@ -1,0 +1,251 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// Frame-field generation: the analytic cases of issue 5 and MATH.md section 6
+// (identity and constant metrics on a box, the flat metric g = J^T J on
+// Phi^{-1}(box)), singularity bookkeeping, and thread-count independence.
+#include <CGAL_ext/Frame_field_3.h>
+#include <CGAL_ext/Frame_field_singularities_3.h>
+#include <CGAL_ext/Metric_field_3.h>
+#include <CGAL_ext/build_triangulation_from_tets.h>
+#include <CGAL_ext/tetrahedralize.h>
+
+#include "reference/degenerate_test_meshes.h"
+#include "test_support.h"
+
+#include <catch2/catch.hpp>
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <map>
+#include <memory>
+#include <set>
+
+using namespace CGAL_ext;
+using Tr = Tet_mesh_triangulation_3<>;
+using Field = Metric_field_3<Tr>;
+using Frames = Frame_field_3<Field>;
+
+namespace {
+
+struct Mesh {
+  Tr tr;
+  testing::Test_mesh m;
+};
+
+std::unique_ptr<Mesh> make_mesh(testing::Test_mesh m) {
+  auto out = std::make_unique<Mesh>();
+  out->m = std::move(m);
+  build_triangulation_from_tets(out->m.points, out->m.tets, {}, out->tr);
+  return out;
+}
+
+// The smallest angle between R and Q G over the octahedral group, in degrees.
+double frame_angle_deg(const Eigen::Matrix3d& R, const Eigen::Matrix3d& Q) {
+  return octahedral_distance(R, Q) * 180 / M_PI;
+}
+
+// MATH.md section 6's map and its inverse by Newton's method.
+Eigen::Vector3d phi(const Eigen::Vector3d& x) {
+  return {x(0) + 0.4 * std::sin(x(1) + x(2)), x(1) + 0.3 * std::sin(x(2) * x(0)), x(2) + 0.5 * std::sin(x(0))};
+}
+Eigen::Vector3d phi_inverse(const Eigen::Vector3d& X) {
+  Eigen::Vector3d x = X;
+  for (int it = 0; it < 50; ++it) {
+    const Eigen::Vector3d r = phi(x) - X;
+    if (r.norm() < 1e-15) break;
+    x -= cgal_ext_test::flat_metric::jacobian(x).lu().solve(r);
+  }
+  return x;
+}
+
+} // namespace
+
+TEST_CASE("identity metric on a box: axis-aligned frames, zero energy, no singular edge", "[frame_field]") {
+  auto mesh = make_mesh(testing::kuhn_grid(4, 3, 3, 0.5));
+  const Field field(mesh->tr, Eigen::Matrix3d::Identity().eval());
+  Frames ff(field);
+  const Frame_field_statistics& st = ff.compute();
+  REQUIRE(st.tets == mesh->m.tets.size());
+  CHECK(st.identity_transports == st.interior_faces);
+  CHECK(st.boundary_faces == 2 * 2 * (4 * 3 + 3 * 3 + 4 * 3)); // 2 sides, 2 triangles per square
+  double worst = 0;
+  for (std::size_t i = 0; i < ff.size(); ++i) worst = std::max(worst, frame_angle_deg(ff.rotation(i), Eigen::Matrix3d::Identity()));
+  INFO("worst angle to the axes " << worst << " deg, energy " << st.smoothness_energy);
+  CHECK(worst < 1e-6);
+  CHECK(st.smoothness_energy < 1e-12 * st.total_face_weight);
+  CHECK(st.boundary_error_max_deg < 1e-6);
+  CHECK(st.max_orthonormality_error < 1e-12);
+  CHECK(singular_edges(ff).empty());
+  CHECK(st.hard_two_axes > 0); // the box's edges fix two axes
+}
+
+TEST_CASE("constant anisotropic metric diag(1,16,4): F = A^-1 up to the octahedral group", "[frame_field]") {
+  auto mesh = make_mesh(testing::kuhn_grid(3, 3, 3, 1.0));
+  const Eigen::Matrix3d g = Eigen::Vector3d(1, 16, 4).asDiagonal();
+  const Field field(mesh->tr, g);
+  Frames ff(field);
+  const Frame_field_statistics& st = ff.compute();
+  const Eigen::Matrix3d A_inv = Eigen::Vector3d(1, 0.25, 0.5).asDiagonal();
+  double worst = 0, worst_f = 0;
+  for (std::size_t i = 0; i < ff.size(); ++i) {
+    worst = std::max(worst, frame_angle_deg(ff.rotation(i), Eigen::Matrix3d::Identity()));
+    // F G = A^-1 for the G that brings R to the identity.
+    const Eigen::Matrix3d G = closest_octahedral_matching(Eigen::Matrix3d::Identity(), ff.rotation(i)).G;
+    worst_f = std::max(worst_f, (ff.frame(i) * G - A_inv).cwiseAbs().maxCoeff());
+  }
+  INFO("worst angle " << worst << " deg, worst |F G - A^-1| " << worst_f);
+  CHECK(worst < 1e-6);
+  CHECK(worst_f < 1e-8);
+  CHECK(st.smoothness_energy < 1e-12 * st.total_face_weight);
+  CHECK(st.boundary_error_max_deg < 1e-6);
+  CHECK(singular_edges(ff).empty());
+  // The frame vectors have unit length in the metric: |F e_k|_g = 1.
+  const Eigen::Matrix3d F = ff.frame(0);
+  for (int k = 0; k < 3; ++k) CHECK(std::abs(std::sqrt(F.col(k).dot(g * F.col(k))) - 1) < 1e-12);
+}
+
+TEST_CASE("flat metric g = J^T J on Phi^-1(box) recovers F = J^-1, better under refinement", "[frame_field]") {
+  // MATH.md section 6: the box [0,1]^3 in Phi-space, pulled back.
+  std::vector<double> mean_err, max_err, boundary_mean;
+  for (int n : {3, 6, 9}) {
+    testing::Test_mesh m = testing::kuhn_grid(n, n, n, 1.0 / n);
+    for (auto& p : m.points) {
+      const Eigen::Vector3d x = phi_inverse(Eigen::Vector3d(p[0], p[1], p[2]));
+      p = {x(0), x(1), x(2)};
+    }
+    auto mesh = make_mesh(m);
+    const Field field(mesh->tr, [](const Tr::Point& p) {
+      return cgal_ext_test::flat_metric::metric(Eigen::Vector3d(p.x(), p.y(), p.z()));
+    });
+    Frames ff(field);
+    const Frame_field_statistics& st = ff.compute();
+    double sum = 0, mx = 0;
+    for (std::size_t i = 0; i < ff.size(); ++i) {
+      // Exact rotation field R = Q^T (MATH.md section 6), so F = A^-1 Q^T = J^-1.
+      const Eigen::Matrix3d Q = cgal_ext_test::flat_metric::polar_rotation(ff.centroid(i));
+      const double e = frame_angle_deg(ff.rotation(i), Q.transpose());
+      sum += e;
+      mx = std::max(mx, e);
+    }
+    mean_err.push_back(sum / double(ff.size()));
+    max_err.push_back(mx);
+    const auto sing = singular_edges(ff);
+    INFO("n = " << n << ": " << ff.size() << " tets, mean " << mean_err.back() << " deg, max " << mx
+                << " deg, energy " << st.smoothness_energy << " / weight " << st.total_face_weight
+                << ", boundary error mean " << st.boundary_error_mean_deg << " max " << st.boundary_error_max_deg
+                << ", L-BFGS " << st.refinement_iterations << ", CG " << st.linear_iterations);
+    CHECK(sing.empty());
+    // Hard constraints hold exactly; the faces left soft (a third face at a
+    // corner, a second face within 30 degrees of the first) are close.
+    CHECK(st.boundary_error_max_deg < 10);
+    boundary_mean.push_back(st.boundary_error_mean_deg);
+    CHECK(st.smoothness_energy <= st.projected_energy);
+    CHECK(mx < 10);
+    WARN("n = " << n << ": mean error " << mean_err.back() << " deg, max " << mx << " deg");
+  }
+  CHECK(mean_err[1] < 0.75 * mean_err[0]);
+  CHECK(mean_err[2] < 0.75 * mean_err[1]);
+  CHECK(boundary_mean[1] < 0.75 * boundary_mean[0]);
+  CHECK(boundary_mean[2] < 0.75 * boundary_mean[1]);
+}
+
+TEST_CASE("the result does not depend on the number of threads", "[frame_field]") {
+  testing::Test_mesh m = testing::jittered_kuhn_grid(4, 7);
+  auto mesh = make_mesh(m);
+  const Field field(mesh->tr, [](const Tr::Point& p) {
+    return cgal_ext_test::flat_metric::metric(Eigen::Vector3d(p.x(), p.y(), p.z()) / 24.0);
+  });
+  std::vector<Eigen::Matrix3d> one, two;
+  double e1, e2;
+  {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
+    Frames ff(field);
+    e1 = ff.compute().smoothness_energy;
+    for (std::size_t i = 0; i < ff.size(); ++i) one.push_back(ff.rotation(i));
+  }
+  {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
+    Frames ff(field);
+    e2 = ff.compute().smoothness_energy;
+    for (std::size_t i = 0; i < ff.size(); ++i) two.push_back(ff.rotation(i));
+  }
+  CHECK(e1 == e2);
+  REQUIRE(one.size() == two.size());
+  bool same = true;
+  for (std::size_t i = 0; i < one.size(); ++i) same = same && one[i] == two[i];
+  CHECK(same);
+}
+
+TEST_CASE("singular edges: a twisted field on a grid has quarter-turn loops, matched exactly", "[frame_field]") {
+  // Refinement from a field rotating by 90 degrees about z around the grid's
+  // central vertical edge: the loop around it must be a +1/4 singularity
+  // (3 hexahedra), and the edges far from it regular.
+  auto mesh = make_mesh(testing::kuhn_grid(4, 4, 2, 1.0));
+  const Field field(mesh->tr, Eigen::Matrix3d::Identity().eval());
+  Frames ff(field);
+  Frame_field_options opt;
+  opt.max_refinement_iterations = 0;
+  ff.compute(opt);
+  // Overwrite the frames: rotation by angle/4 about z, angle the azimuth about (2,2).
+  struct Twisted {
+    static Eigen::Matrix3d at(const Eigen::Vector3d& c, double sense) {
+      const double a = std::atan2(c(1) - 2, c(0) - 2);
+      return Eigen::AngleAxisd(sense * a / 4, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    }
+  };
+  for (double sense : {1.0, -1.0}) {
+    Frames twisted(field);
+    twisted.compute(opt);
+    twisted.set_rotations([&](std::size_t i) { return Twisted::at(twisted.centroid(i), sense); });
+    const auto sing = singular_edges(twisted);
+    REQUIRE(sing.size() == 2); // the central vertical edge, in each of the 2 layers
+    for (const auto& s : sing) {
+      CHECK(s.type == (sense > 0 ? Singularity_type::plus_quarter : Singularity_type::minus_quarter));
+      CHECK(s.valence == (sense > 0 ? 3 : 5));
+      const auto& p0 = mesh->m.points[s.vertices[0]];
+      const auto& p1 = mesh->m.points[s.vertices[1]];
+      CHECK(p0[0] == 2);
+      CHECK(p0[1] == 2);
+      CHECK(p1[0] == 2);
+      CHECK(p1[1] == 2);
+    }
+  }
+}
+
+TEST_CASE("a ball with the identity metric has a valid singularity graph", "[frame_field]") {
+  // Singular curves cannot end inside the domain: no interior vertex may have
+  // exactly one incident singular edge.
+  Tetrahedralize_options mo;
+  mo.size = 0.25;
+  const IO::Medit_mesh ball = tetrahedralize_builtin("ball", mo);
+  testing::Test_mesh m;
+  m.points = ball.vertices;
+  m.tets = ball.tetrahedra;
+  auto mesh = make_mesh(m);
+  const Field field(mesh->tr, Eigen::Matrix3d::Identity().eval());
+  Frames ff(field);
+  const Frame_field_statistics& st = ff.compute();
+  const auto sing = singular_edges(ff);
+  std::set<std::size_t> boundary_vertices;
+  for (const auto& t : ball.triangles) boundary_vertices.insert(t.begin(), t.end());
+  std::map<std::size_t, int> degree;
+  std::map<std::string, int> types;
+  for (const auto& s : sing) {
+    ++degree[s.vertices[0]], ++degree[s.vertices[1]];
+    ++types[singularity_type_name(s.type)];
+  }
+  int dangling = 0;
+  for (const auto& [v, d] : degree)
+    if (d == 1 && !boundary_vertices.count(v)) ++dangling;
+  std::string summary;
+  for (const auto& [name, n] : types) summary += " " + name + ": " + std::to_string(n);
+  WARN("ball: " << ff.size() << " tets, " << sing.size() << " singular edges (" << summary
+                << "), energy " << st.smoothness_energy << " / weight " << st.total_face_weight
+                << ", boundary error mean " << st.boundary_error_mean_deg << " max " << st.boundary_error_max_deg
+                << " deg, CG " << st.linear_iterations << ", L-BFGS " << st.refinement_iterations);
+  REQUIRE(!boundary_vertices.empty());
+  CHECK(dangling == 0);
+  CHECK(!sing.empty()); // a ball's boundary-aligned field cannot be regular (the hairy ball)
+  CHECK(st.boundary_error_mean_deg < 5);
+}

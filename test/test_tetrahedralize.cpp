@@ -1,0 +1,436 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// Tetrahedral meshing with Mesh_3: closed surfaces from files and built-in
+// shapes. Checks orientation (exact predicate), volume, the boundary as a
+// closed oriented 2-manifold, its Euler characteristic, determinism, and
+// every kind of bad input.
+#include <CGAL_ext/tetrahedralize.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <catch2/catch.hpp>
+
+#include <unistd.h>
+
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using CGAL_ext::Input_error;
+using CGAL_ext::Tetrahedralize_options;
+using CGAL_ext::Tetrahedralize_report;
+using CGAL_ext::IO::Medit_mesh;
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+const double pi = 3.14159265358979323846;
+
+// The scratch directory of this test process (CTest runs test cases as
+// parallel processes), named after the pid and removed at exit.
+struct Scratch {
+  fs::path path = fs::temp_directory_path() / ("cgal_ext_test_tetrahedralize_" + std::to_string(::getpid()));
+  ~Scratch() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+const fs::path& scratch() {
+  static const Scratch s;
+  fs::create_directories(s.path);
+  return s.path;
+}
+
+std::string write_file(const std::string& name, const std::string& content) {
+  const fs::path p = scratch() / name;
+  std::ofstream(p, std::ios::binary) << content;
+  return p.string();
+}
+
+// A closed polygonal surface in memory.
+struct Surface {
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::vector<int>> faces;
+
+  std::string off() const {
+    std::ostringstream s;
+    s.precision(17);
+    s << "OFF\n" << points.size() << " " << faces.size() << " 0\n";
+    for (const auto& p : points) s << p[0] << " " << p[1] << " " << p[2] << "\n";
+    for (const auto& f : faces) {
+      s << f.size();
+      for (int v : f) s << " " << v;
+      s << "\n";
+    }
+    return s.str();
+  }
+  std::string stl() const { // triangles only
+    std::ostringstream s;
+    s.precision(17);
+    s << "solid test\n";
+    for (const auto& f : faces) {
+      s << "facet normal 0 0 0\nouter loop\n";
+      for (int v : f) s << "vertex " << points[v][0] << " " << points[v][1] << " " << points[v][2] << "\n";
+      s << "endloop\nendfacet\n";
+    }
+    s << "endsolid test\n";
+    return s.str();
+  }
+  // The enclosed volume (divergence theorem, faces fanned from their first vertex).
+  double volume() const {
+    double v = 0;
+    for (const auto& f : faces)
+      for (std::size_t i = 1; i + 1 < f.size(); ++i) {
+        const auto &a = points[f[0]], &b = points[f[i]], &c = points[f[i + 1]];
+        v += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+              a[2] * (b[0] * c[1] - b[1] * c[0])) /
+             6;
+      }
+    return v;
+  }
+};
+
+// The octahedron |x| + |y| + |z| <= r, outward oriented (volume 4 r^3 / 3).
+Surface octahedron(double r = 1, double shift = 0) {
+  Surface s;
+  s.points = {{r + shift, 0, 0}, {-r + shift, 0, 0}, {shift, r, 0}, {shift, -r, 0}, {shift, 0, r}, {shift, 0, -r}};
+  s.faces = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  return s;
+}
+
+// The cube [-1,1]^3 with quadrilateral faces, outward oriented.
+Surface quad_cube() {
+  Surface s;
+  for (int i = 0; i < 8; ++i) s.points.push_back({i & 1 ? 1. : -1., i & 2 ? 1. : -1., i & 4 ? 1. : -1.});
+  s.faces = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  return s;
+}
+
+K::Point_3 point(const Medit_mesh& m, std::size_t i) {
+  return K::Point_3(m.vertices[i][0], m.vertices[i][1], m.vertices[i][2]);
+}
+
+double tet_volume(const Medit_mesh& m, const std::array<std::size_t, 4>& t) {
+  return CGAL::volume(point(m, t[0]), point(m, t[1]), point(m, t[2]), point(m, t[3]));
+}
+
+double mesh_volume(const Medit_mesh& m) {
+  double v = 0;
+  for (const auto& t : m.tetrahedra) v += tet_volume(m, t);
+  return v;
+}
+
+// The volume enclosed by the boundary triangles, by the divergence theorem:
+// equal to the tets' volume only if the triangles are oriented outwards.
+double boundary_volume(const Medit_mesh& m) {
+  double v = 0;
+  const K::Point_3 o(0, 0, 0);
+  for (const auto& f : m.triangles) v += CGAL::volume(o, point(m, f[0]), point(m, f[1]), point(m, f[2]));
+  return v;
+}
+
+// Checks the invariants that every mesh must satisfy; returns the Euler
+// characteristic of the boundary.
+long check_mesh(const Medit_mesh& m) {
+  REQUIRE(!m.tetrahedra.empty());
+  REQUIRE(m.vertex_references.size() == m.vertices.size());
+  REQUIRE(m.tetrahedron_references.size() == m.tetrahedra.size());
+  REQUIRE(m.triangle_references.size() == m.triangles.size());
+  REQUIRE(m.edge_references.size() == m.edges.size());
+
+  // Every tetrahedron positively oriented (exact predicate), every index in range.
+  std::size_t not_positive = 0;
+  std::vector<char> used(m.vertices.size(), 0);
+  for (const auto& t : m.tetrahedra) {
+    for (std::size_t v : t) {
+      REQUIRE(v < m.vertices.size());
+      used[v] = 1;
+    }
+    if (CGAL::orientation(point(m, t[0]), point(m, t[1]), point(m, t[2]), point(m, t[3])) != CGAL::POSITIVE)
+      ++not_positive;
+  }
+  CHECK(not_positive == 0);
+  // Every vertex used.
+  CHECK(std::count(used.begin(), used.end(), 0) == 0);
+
+  // The boundary: every undirected edge in exactly two triangles, every
+  // directed edge in exactly one (a closed, consistently oriented surface).
+  std::map<std::pair<std::size_t, std::size_t>, int> directed;
+  std::set<std::size_t> boundary_vertices;
+  for (const auto& f : m.triangles)
+    for (int i = 0; i < 3; ++i) {
+      REQUIRE(f[i] < m.vertices.size());
+      boundary_vertices.insert(f[i]);
+      ++directed[{f[i], f[(i + 1) % 3]}];
+    }
+  std::size_t bad_edges = 0, edges = 0;
+  for (const auto& [e, n] : directed) {
+    if (e.first < e.second) ++edges;
+    const auto twin = directed.find({e.second, e.first});
+    if (n != 1 || twin == directed.end() || twin->second != 1) ++bad_edges;
+  }
+  CHECK(bad_edges == 0);
+  CHECK(edges * 2 == directed.size());
+  // Outward orientation.
+  CHECK(boundary_volume(m) == Approx(mesh_volume(m)).epsilon(1e-9));
+  // Vertex references: 2 or less on the boundary, 3 inside.
+  for (std::size_t i = 0; i < m.vertices.size(); ++i)
+    if (!boundary_vertices.count(i)) CHECK(m.vertex_references[i] == 3);
+  // Sharp edges are edges of the boundary.
+  for (const auto& e : m.edges) CHECK(directed.count({e[0], e[1]}) + directed.count({e[1], e[0]}) == 2);
+
+  return static_cast<long>(boundary_vertices.size()) - static_cast<long>(edges) +
+         static_cast<long>(m.triangles.size());
+}
+
+bool same(const Medit_mesh& a, const Medit_mesh& b) {
+  return a.vertices == b.vertices && a.vertex_references == b.vertex_references && a.tetrahedra == b.tetrahedra &&
+         a.tetrahedron_references == b.tetrahedron_references && a.triangles == b.triangles &&
+         a.triangle_references == b.triangle_references && a.edges == b.edges && a.edge_references == b.edge_references;
+}
+
+Tetrahedralize_options with_size(double size) {
+  Tetrahedralize_options o;
+  o.size = size;
+  return o;
+}
+
+// The Input_error of `f`, whose message must contain every one of `words`.
+template <class F>
+void expect_error(F f, const std::vector<std::string>& words) {
+  try {
+    f();
+    FAIL("no Input_error");
+  } catch (const Input_error& e) {
+    const std::string what = e.what();
+    INFO(what);
+    for (const std::string& w : words) CHECK(what.find(w) != std::string::npos);
+  }
+}
+
+} // namespace
+
+TEST_CASE("an octahedron: orientation, volume, closed boundary, sharp edges", "[tetrahedralize]") {
+  const Surface s = octahedron();
+  const std::string path = write_file("octahedron.off", s.off());
+  Tetrahedralize_report report;
+  const Medit_mesh m = CGAL_ext::tetrahedralize_surface(path, with_size(0.25), &report);
+  CHECK(check_mesh(m) == 2); // a sphere
+  // The faces are flat and the 12 edges sharp (109 degrees) and protected:
+  // the volume is the octahedron's up to rounding.
+  CHECK(mesh_volume(m) == Approx(s.volume()).epsilon(1e-6));
+  CHECK(!m.edges.empty());
+  CHECK(report.vertices == m.vertices.size());
+  CHECK(report.tets == m.tetrahedra.size());
+  CHECK(report.boundary_triangles == m.triangles.size());
+  CHECK(report.seconds > 0);
+  CHECK(report.domain.find("octahedron.off") != std::string::npos);
+  CHECK(report.domain.find("size 0.25") != std::string::npos);
+  CHECK(report.domain.find("repaired") == std::string::npos);
+  // The 6 corners are vertices with reference 0.
+  std::size_t corners = 0;
+  for (int r : m.vertex_references) corners += r == 0;
+  CHECK(corners == 6);
+  for (int r : m.tetrahedron_references) CHECK(r == 1);
+  for (int r : m.triangle_references) CHECK(r >= 1);
+}
+
+TEST_CASE("same input and options give the same mesh; another seed still a valid mesh", "[tetrahedralize]") {
+  const std::string path = write_file("octahedron_det.off", octahedron().off());
+  const Medit_mesh a = CGAL_ext::tetrahedralize_surface(path, with_size(0.3));
+  const Medit_mesh b = CGAL_ext::tetrahedralize_surface(path, with_size(0.3));
+  CHECK(same(a, b));
+  Tetrahedralize_options o = with_size(0.3);
+  o.seed = 7;
+  const Medit_mesh c = CGAL_ext::tetrahedralize_surface(path, o);
+  CHECK(check_mesh(c) == 2);
+  const Medit_mesh d = CGAL_ext::tetrahedralize_surface(path, o);
+  CHECK(same(c, d));
+  // Without optimization and without sharp features, still a valid mesh.
+  o.optimize = false;
+  o.sharp_features = false;
+  const Medit_mesh e = CGAL_ext::tetrahedralize_surface(path, o);
+  CHECK(check_mesh(e) == 2);
+  CHECK(e.edges.empty());
+  CHECK(mesh_volume(e) == Approx(octahedron().volume()).epsilon(0.05));
+}
+
+TEST_CASE("the automatic size gives a mesh of a sensible size", "[tetrahedralize]") {
+  const Surface s = octahedron(1);
+  const std::string path = write_file("octahedron_auto.off", s.off());
+  Tetrahedralize_report report;
+  const Medit_mesh m = CGAL_ext::tetrahedralize_surface(path, {}, &report);
+  check_mesh(m);
+  // Bounding box diagonal 2 sqrt(3): size 0.173.
+  CHECK(report.domain.find("size 0.173205") != std::string::npos);
+  CHECK(report.domain.find("facet distance 0.0173205") != std::string::npos);
+  CHECK(m.tetrahedra.size() > 500);
+  CHECK(m.tetrahedra.size() < 20000);
+}
+
+TEST_CASE("STL, inside-out and quadrilateral inputs are meshed and their repairs reported", "[tetrahedralize]") {
+  SECTION("STL") {
+    const Surface s = octahedron(1, 0.5);
+    const Medit_mesh m = CGAL_ext::tetrahedralize_surface(write_file("octahedron.STL", s.stl()), with_size(0.3));
+    CHECK(check_mesh(m) == 2);
+    CHECK(mesh_volume(m) == Approx(s.volume()).epsilon(1e-6));
+  }
+  SECTION("inside-out") {
+    Surface s = octahedron();
+    for (auto& f : s.faces) std::reverse(f.begin(), f.end());
+    Tetrahedralize_report report;
+    const Medit_mesh m =
+        CGAL_ext::tetrahedralize_surface(write_file("inside_out.off", s.off()), with_size(0.3), &report);
+    CHECK(check_mesh(m) == 2);
+    CHECK(mesh_volume(m) == Approx(-s.volume()).epsilon(1e-6));
+    CHECK(report.domain.find("repaired") != std::string::npos);
+    CHECK(report.domain.find("inside-out") != std::string::npos);
+  }
+  SECTION("one face flipped: the soup is reoriented") {
+    Surface s = octahedron();
+    std::reverse(s.faces[3].begin(), s.faces[3].end());
+    Tetrahedralize_report report;
+    const Medit_mesh m =
+        CGAL_ext::tetrahedralize_surface(write_file("one_flipped.off", s.off()), with_size(0.3), &report);
+    CHECK(check_mesh(m) == 2);
+    CHECK(report.domain.find("repaired: polygon soup") != std::string::npos);
+  }
+  SECTION("quadrilaterals") {
+    const Surface s = quad_cube();
+    Tetrahedralize_report report;
+    const Medit_mesh m = CGAL_ext::tetrahedralize_surface(write_file("quad_cube.obj", [&] {
+      std::ostringstream o;
+      for (const auto& p : s.points) o << "v " << p[0] << " " << p[1] << " " << p[2] << "\n";
+      for (const auto& f : s.faces) o << "f " << f[0] + 1 << " " << f[1] + 1 << " " << f[2] + 1 << " " << f[3] + 1 << "\n";
+      return o.str();
+    }()), with_size(0.5), &report);
+    CHECK(check_mesh(m) == 2);
+    CHECK(mesh_volume(m) == Approx(8).epsilon(1e-9));
+    CHECK(report.domain.find("6 faces with more than 3 vertices triangulated") != std::string::npos);
+  }
+}
+
+TEST_CASE("built-in ball: volume close to 4/3 pi", "[tetrahedralize][builtin]") {
+  Tetrahedralize_report report;
+  const Medit_mesh m = CGAL_ext::tetrahedralize_builtin("ball", with_size(0.25), &report);
+  CHECK(check_mesh(m) == 2);
+  // The boundary is inscribed: slightly less, within the facet distance.
+  CHECK(mesh_volume(m) < 4 * pi / 3);
+  CHECK(mesh_volume(m) == Approx(4 * pi / 3).epsilon(0.04));
+  CHECK(m.edges.empty());
+  CHECK(report.domain.find("ball") != std::string::npos);
+}
+
+TEST_CASE("built-in torus: genus 1 (boundary Euler characteristic 0), volume 2 pi^2 R r^2", "[tetrahedralize][builtin]") {
+  const Medit_mesh m = CGAL_ext::tetrahedralize_builtin("torus", with_size(0.2));
+  CHECK(check_mesh(m) == 0);
+  CHECK(mesh_volume(m) == Approx(2 * pi * pi * 0.16).epsilon(0.05));
+}
+
+TEST_CASE("built-in box_with_hole: volume 4 - 0.16 pi, genus 1, sharp edges kept", "[tetrahedralize][builtin]") {
+  Tetrahedralize_report report;
+  const Medit_mesh m = CGAL_ext::tetrahedralize_builtin("box_with_hole", with_size(0.3), &report);
+  CHECK(check_mesh(m) == 0);
+  CHECK(mesh_volume(m) == Approx(4 - 0.16 * pi).epsilon(0.01));
+  CHECK(!m.edges.empty());
+  // The 8 corners of the box.
+  std::size_t corners = 0;
+  for (int r : m.vertex_references) corners += r == 0;
+  CHECK(corners == 8);
+  // Every vertex of the box's vertical edges is on a protected edge.
+  std::set<std::size_t> on_edges;
+  for (const auto& e : m.edges) on_edges.insert(e.begin(), e.end());
+  for (std::size_t i = 0; i < m.vertices.size(); ++i) {
+    const auto& p = m.vertices[i];
+    if (std::abs(std::abs(p[0]) - 1) < 1e-12 && std::abs(std::abs(p[1]) - 1) < 1e-12) CHECK(on_edges.count(i) == 1);
+  }
+}
+
+TEST_CASE("built-in cube and blobby", "[tetrahedralize][builtin]") {
+  const Medit_mesh cube = CGAL_ext::tetrahedralize_builtin("cube", with_size(0.5));
+  CHECK(check_mesh(cube) == 2);
+  CHECK(mesh_volume(cube) == Approx(8).epsilon(1e-9));
+  const Medit_mesh blobby = CGAL_ext::tetrahedralize_builtin("blobby", with_size(0.2));
+  CHECK(check_mesh(blobby) == 2);
+  CHECK(mesh_volume(blobby) > 4 * pi / 3 * 0.8 * 0.8 * 0.8); // more than the central ball
+  // Deterministic too.
+  CHECK(same(blobby, CGAL_ext::tetrahedralize_builtin("blobby", with_size(0.2))));
+}
+
+TEST_CASE("builtin_shape_names lists the shapes", "[tetrahedralize][builtin]") {
+  const auto names = CGAL_ext::builtin_shape_names();
+  for (const char* n : {"ball", "torus", "box_with_hole", "blobby", "cube"})
+    CHECK(std::find(names.begin(), names.end(), n) != names.end());
+}
+
+TEST_CASE("bad input: a clear Input_error", "[tetrahedralize][errors]") {
+  using CGAL_ext::tetrahedralize_builtin;
+  using CGAL_ext::tetrahedralize_surface;
+  const std::string good = write_file("good.off", octahedron().off());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+
+  SECTION("missing file") {
+    const std::string path = (scratch() / "no_such_file.off").string();
+    expect_error([&] { tetrahedralize_surface(path); }, {path, "cannot open"});
+  }
+  SECTION("unsupported extension") {
+    const std::string path = write_file("octahedron.mesh", octahedron().off());
+    expect_error([&] { tetrahedralize_surface(path); }, {path, "unsupported extension '.mesh'", ".off", ".stl"});
+    const std::string none = write_file("octahedron", octahedron().off());
+    expect_error([&] { tetrahedralize_surface(none); }, {"no file extension"});
+  }
+  SECTION("garbage and empty files") {
+    expect_error([&] { tetrahedralize_surface(write_file("garbage.off", "this is not OFF\n")); }, {"cannot read"});
+    expect_error([&] { tetrahedralize_surface(write_file("empty.off", "OFF\n0 0 0\n")); }, {"empty"});
+  }
+  SECTION("open surface") {
+    Surface s = octahedron();
+    s.faces.pop_back();
+    expect_error([&] { tetrahedralize_surface(write_file("open.off", s.off())); },
+                 {"the surface is not closed (3 border edges)"});
+  }
+  SECTION("self-intersecting surface") {
+    Surface s = octahedron();
+    const Surface t = octahedron(1, 0.5);
+    for (const auto& p : t.points) s.points.push_back(p);
+    for (auto f : t.faces) {
+      for (int& v : f) v += 6;
+      s.faces.push_back(f);
+    }
+    expect_error([&] { tetrahedralize_surface(write_file("two.off", s.off())); }, {"self-intersecting"});
+  }
+  SECTION("non-manifold surface") {
+    // Two octahedra sharing a vertex: the soup repair cannot make it a manifold.
+    Surface s = octahedron();
+    Surface t = octahedron(1, 2); // its vertex 1 is (1, 0, 0), vertex 0 of the first
+    for (const auto& p : t.points) s.points.push_back(p);
+    for (auto f : t.faces) {
+      for (int& v : f) v = v == 1 ? 0 : v + 6;
+      s.faces.push_back(f);
+    }
+    expect_error([&] { tetrahedralize_surface(write_file("pinched.off", s.off())); }, {"2-manifold"});
+  }
+  SECTION("bad sizes") {
+    for (double size : {-1.0, nan, inf})
+      expect_error([&] { tetrahedralize_surface(good, with_size(size)); }, {good, "size", "positive and finite"});
+    expect_error([&] { tetrahedralize_builtin("ball", with_size(-0.5)); }, {"ball", "size", "(got -0.5)"});
+    Tetrahedralize_options o;
+    o.facet_distance = nan;
+    expect_error([&] { tetrahedralize_surface(good, o); }, {"facet distance", "nan"});
+    expect_error([&] { tetrahedralize_builtin("torus", with_size(1e-4)); }, {"too small", "tetrahedra"});
+  }
+  SECTION("unknown built-in shape") {
+    expect_error([&] { tetrahedralize_builtin("dodecahedron"); },
+                 {"dodecahedron", "unknown", "ball", "torus", "box_with_hole", "blobby", "cube"});
+  }
+}
