@@ -6,7 +6,8 @@
 // anisotropic, varying metric; wall time per stage and the process's peak
 // memory (resident set high-water mark, so run the sizes in increasing order).
 //
-//   benchmark_frame_field INPUT SIZE [SIZE ...]
+//   benchmark_frame_field INPUT SIZE [SIZE ...] [linear_tolerance=X] [energy_tolerance=X]
+//                         [aggregate_size=N] [trace]
 //
 // INPUT: a closed surface (.off .obj .stl .ply) or builtin:NAME.
 // There is no reference implementation to compare against; the figures are
@@ -46,16 +47,31 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string input = argv[1];
+  CGAL_ext::Frame_field_options options;
+  std::vector<double> sizes;
+  for (int a = 2; a < argc; ++a) {
+    const std::string arg = argv[a];
+    if (arg.rfind("linear_tolerance=", 0) == 0) options.linear_tolerance = std::atof(arg.c_str() + 17);
+    else if (arg.rfind("energy_tolerance=", 0) == 0) options.energy_tolerance = std::atof(arg.c_str() + 17);
+    else if (arg.rfind("aggregate_size=", 0) == 0) options.aggregate_size = std::atoi(arg.c_str() + 15);
+    else if (arg == "trace")
+      options.iteration_progress = [](const std::string& stage, int it, double value) {
+        if (it % 10 == 0) std::printf("%8s %s %d: %.8g\n", "", stage.c_str(), it, value);
+      };
+    else sizes.push_back(std::atof(arg.c_str()));
+  }
   std::printf("Frame-field generation on %s, %d threads; metric g = diag(1, 4, 1) (1 + |x|^2 / d^2)^2 with d the\n"
               "bounding-box diagonal (anisotropic, varying: non-trivial transports). Seconds per stage.\n\n",
               input.c_str(), tbb::info::default_concurrency());
   std::printf("%8s %9s %8s %8s %8s %8s %8s %8s %8s %8s %8s %9s %8s\n", "size", "tets", "Mesh_3", "build", "setup",
               "transp", "linear", "project", "refine", "singul", "total*", "us/tet*", "peak GB");
-  for (int a = 2; a < argc; ++a) {
+  std::printf("linear_tolerance %g, energy_tolerance %g, aggregate_size %d\n", options.linear_tolerance,
+              options.energy_tolerance, options.aggregate_size);
+  for (const double size : sizes) {
     CGAL_ext::Tetrahedralize_options mo;
-    mo.size = std::atof(argv[a]);
+    mo.size = size;
     if (!(mo.size > 0)) {
-      std::fprintf(stderr, "bad size '%s'\n", argv[a]);
+      std::fprintf(stderr, "bad size %g\n", size);
       return 2;
     }
     auto t = std::chrono::steady_clock::now();
@@ -78,7 +94,7 @@ int main(int argc, char** argv) {
     field.precompute();
     const double t_build = since(t);
     CGAL_ext::Frame_field_3<Field> ff(field);
-    const CGAL_ext::Frame_field_statistics& st = ff.compute();
+    const CGAL_ext::Frame_field_statistics& st = ff.compute(options);
     t = std::chrono::steady_clock::now();
     const auto sing = CGAL_ext::singular_edges(ff);
     const double t_sing = since(t);
@@ -86,9 +102,10 @@ int main(int argc, char** argv) {
     std::printf("%8.4g %9zu %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %9.2f %8.2f\n", mo.size, ff.size(),
                 t_mesh, t_build, st.seconds_setup, st.seconds_transports, st.seconds_linear, st.seconds_projection,
                 st.seconds_refinement, t_sing, total, 1e6 * total / double(ff.size()), peak_gb());
-    std::printf("%8s CG %d (residual %.1e), L-BFGS %d, energy %.4g -> %.4g, %zu singular edges, boundary error "
+    std::printf("%8s CG %d (residual %.1e; coarse: %d on %zu aggregates), L-BFGS %d, energy %.4g -> %.4g, %zu singular edges, boundary error "
                 "mean %.3g max %.3g deg\n",
-                "", st.linear_iterations, st.linear_residual, st.refinement_iterations, st.projected_energy,
+                "", st.linear_iterations, st.linear_residual, st.coarse_iterations, st.coarse_unknowns / 9,
+                st.refinement_iterations, st.projected_energy,
                 st.smoothness_energy, sing.size(), st.boundary_error_mean_deg, st.boundary_error_max_deg);
     std::fflush(stdout);
   }

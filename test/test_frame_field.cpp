@@ -249,3 +249,31 @@ TEST_CASE("a ball with the identity metric has a valid singularity graph", "[fra
   CHECK(!sing.empty()); // a ball's boundary-aligned field cannot be regular (the hairy ball)
   CHECK(st.boundary_error_mean_deg < 5);
 }
+
+TEST_CASE("the coarse level of the initialisation changes the iterations, not the solution", "[frame_field]") {
+  testing::Test_mesh m = testing::kuhn_grid(8, 8, 8, 1.0 / 8);
+  for (auto& p : m.points) {
+    const Eigen::Vector3d x = phi_inverse(Eigen::Vector3d(p[0], p[1], p[2]));
+    p = {x(0), x(1), x(2)};
+  }
+  auto mesh = make_mesh(m);
+  const Field field(mesh->tr, [](const Tr::Point& p) {
+    return cgal_ext_test::flat_metric::metric(Eigen::Vector3d(p.x(), p.y(), p.z()));
+  });
+  Frame_field_options opt;
+  opt.linear_tolerance = 1e-10;
+  opt.max_refinement_iterations = 0;
+  Frames with(field), without(field);
+  const Frame_field_statistics a = with.compute(opt);
+  opt.aggregate_size = 0;
+  const Frame_field_statistics b = without.compute(opt);
+  INFO("fine CG iterations: " << a.linear_iterations << " after " << a.coarse_iterations << " coarse on "
+                              << a.coarse_unknowns / 9 << " aggregates, vs " << b.linear_iterations << " alone");
+  CHECK(a.coarse_unknowns > 0);
+  CHECK(b.coarse_unknowns == 0);
+  CHECK(a.linear_iterations < b.linear_iterations);
+  CHECK(std::abs(a.projected_energy - b.projected_energy) <= 1e-6 * b.projected_energy);
+  double worst = 0;
+  for (std::size_t i = 0; i < with.size(); ++i) worst = std::max(worst, (with.sh(i) - without.sh(i)).norm());
+  CHECK(worst < 1e-6);
+}

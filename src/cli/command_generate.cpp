@@ -214,6 +214,15 @@ int command_generate(const std::vector<std::string>& args) {
 
   // 3. The frame field and its singular edges.
   opt.progress = stage;
+  // Long iterations report at most once per second.
+  auto last_report = std::chrono::steady_clock::now();
+  opt.iteration_progress = [&](const std::string& name, int iteration, double measure) {
+    const auto now = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double>(now - last_report).count() < 1) return;
+    last_report = now;
+    std::fprintf(stderr, "[progress] %s: iteration %d, %s %.4g\n", name.c_str(), iteration,
+                 name == "refinement" ? "energy" : "relative residual", measure);
+  };
   Frame_field_3<Metric_field_3<Tr>> ff(*field);
   const Frame_field_statistics& st = ff.compute(opt);
   lap();
