@@ -202,6 +202,13 @@ TEST_CASE("generate rejects bad input with a clear message", "[cli][generate]") 
     CHECK(r.exit_code == 2);
     CHECK(r.err.find("--metric SOL needs a .mesh") != std::string::npos);
   }
+  SECTION("meshing options with a tet mesh input") {
+    const Run r = run("generate " + cube + " --size 0.1 -o " + out);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find("--size") != std::string::npos);
+    const Run s = run("generate " + cube + " --smooth-surface -o " + out);
+    CHECK(s.exit_code == 2);
+  }
   SECTION("an unknown builtin shape") {
     const Run r = run("generate builtin:teapot -o " + out);
     CHECK(r.exit_code == 1);

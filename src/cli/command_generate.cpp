@@ -57,6 +57,8 @@ const char* generate_help =
     "  --force               replace output files that exist (never the input)\n"
     "  --size h              target edge length for surface and builtin inputs\n"
     "                        (default: bounding-box diagonal / 20)\n"
+    "  --smooth-surface      do not protect the surface's sharp edges (creases\n"
+    "                        above 60 degrees) in Mesh_3: for organic models\n"
     "  --boundary-weight W   weight of the soft boundary term (default 100)\n"
     "  --soft-boundary       no hard boundary constraint after the projection\n"
     "  --max-iterations N    L-BFGS iterations at most (default 1000)\n"
@@ -117,6 +119,7 @@ int command_generate(const std::vector<std::string>& args) {
   Tetrahedralize_options mesh_opt;
   const auto size = a.option("--size");
   if (size) mesh_opt.size = parse_positive(a, "--size", *size);
+  mesh_opt.sharp_features = !a.flag("--smooth-surface");
   Frame_field_options opt;
   if (const auto w = a.option("--boundary-weight")) opt.boundary_weight = parse_positive(a, "--boundary-weight", *w);
   opt.hard_boundary = !a.flag("--soft-boundary");
@@ -138,7 +141,8 @@ int command_generate(const std::vector<std::string>& args) {
   const bool is_surface = !is_builtin && has_extension(input, {".off", ".obj", ".stl", ".ply"});
   if (!is_builtin && !is_mesh && !is_surface)
     a.fail("INPUT '" + input + "': expected a .mesh tet mesh, a surface (.off .obj .stl .ply) or builtin:NAME");
-  if (size && is_mesh) a.fail("--size applies to surface and builtin inputs; a .mesh input is used as it is");
+  if ((size || !mesh_opt.sharp_features) && is_mesh)
+    a.fail("--size and --smooth-surface apply to surface and builtin inputs; a .mesh input is used as it is");
   if (sol_path && !is_mesh)
     a.fail("--metric SOL needs a .mesh INPUT: a generated mesh has no vertices the .sol could match");
   std::unique_ptr<Metric_expression> formula;
