@@ -893,14 +893,6 @@ private:
     });
   }
 
-  double vdot(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b) const {
-    return internal::deterministic_sum(size(), [&](std::size_t first, std::size_t last) {
-      double s = 0;
-      for (std::size_t i = first; i < last; ++i) s += a[i].dot(b[i]);
-      return s;
-    });
-  }
-
   void refine() {
     const std::size_t n = size();
     stats_.refinement_iterations = 0;
@@ -912,8 +904,11 @@ private:
     ++stats_.energy_evaluations;
     const double floor_energy = 1e-14 * std::max(stats_.total_face_weight, 1e-300);
     const int m = std::max(1, opt_.lbfgs_memory);
-    std::vector<std::vector<Eigen::Vector3d>> S, Y; // history
-    std::vector<double> rho;
+    // History in a ring of m preallocated slots, oldest first in `order`;
+    // per pair: rho = 1 / (s.y) and gamma = (s.y) / (y.Dinv.y).
+    std::vector<std::vector<Eigen::Vector3d>> S, Y;
+    std::vector<int> order;
+    std::vector<double> rho(m), gamma_of(m);
     std::vector<Eigen::Quaterniond> q_new(n);
     std::vector<Sh_vector> s_new(n);
     int small_steps = 0;
@@ -924,45 +919,56 @@ private:
       for (int f = 0; f < 4; ++f) sum += links_[i].w[f];
       inverse_diagonal[i] = sum > 0 ? 3 / (40 * sum) : 1;
     }
+    // One pass over the tetrahedra: update(i), then the sum of value(i) on
+    // the updated data (fixed blocks: deterministic).
+    auto pass = [&](auto&& update, auto&& value) {
+      return internal::deterministic_sum(n, [&](std::size_t first, std::size_t last) {
+        double sum = 0;
+        for (std::size_t i = first; i < last; ++i) {
+          update(i);
+          sum += value(i);
+        }
+        return sum;
+      });
+    };
     for (int it = 0; it < opt_.max_refinement_iterations; ++it) {
       if (E <= floor_energy) break;
-      // Two-loop recursion: p = -H g.
-      internal::parallel_for_each_index(n, [&](std::size_t i) { p[i] = -g[i]; });
-      const int h = int(S.size());
+      // Two-loop recursion, p = -H g, each axpy fused with the next dot product.
+      const int h = int(order.size());
       std::vector<double> alpha(h);
+      double d = pass([&](std::size_t i) { p[i] = -g[i]; },
+                      [&](std::size_t i) { return h > 0 ? S[order[h - 1]][i].dot(p[i]) : 0.0; });
       for (int k = h - 1; k >= 0; --k) {
-        alpha[k] = rho[k] * vdot(S[k], p);
+        const int o = order[k];
+        alpha[k] = rho[o] * d;
         const double a = alpha[k];
-        internal::parallel_for_each_index(n, [&](std::size_t i) { p[i] -= a * Y[k][i]; });
+        d = pass([&](std::size_t i) { p[i] -= a * Y[o][i]; },
+                 [&](std::size_t i) { return k > 0 ? S[order[k - 1]][i].dot(p[i]) : 0.0; });
       }
       // Initial inverse Hessian: gamma diag(1 / h_i), with h_i the
       // Gauss-Newton diagonal of tetrahedron i (its weights vary with the
       // cell size and the boundary terms, by orders of magnitude).
-      double gamma = 1;
-      if (h > 0) {
-        const double yhy = internal::deterministic_sum(n, [&](std::size_t first, std::size_t last) {
-          double sum = 0;
-          for (std::size_t i = first; i < last; ++i) sum += inverse_diagonal[i] * Y[h - 1][i].squaredNorm();
-          return sum;
-        });
-        gamma = vdot(S[h - 1], Y[h - 1]) / yhy;
-      }
-      internal::parallel_for_each_index(n, [&](std::size_t i) { p[i] *= gamma * inverse_diagonal[i]; });
+      const double gamma = h > 0 ? gamma_of[order[h - 1]] : 1.0;
+      double slope = 0;
+      d = pass([&](std::size_t i) { p[i] *= gamma * inverse_diagonal[i]; },
+               [&](std::size_t i) { return h > 0 ? Y[order[0]][i].dot(p[i]) : g[i].dot(p[i]); });
+      if (h == 0) slope = d;
       for (int k = 0; k < h; ++k) {
-        const double beta = rho[k] * vdot(Y[k], p);
-        const double a = alpha[k] - beta;
-        internal::parallel_for_each_index(n, [&](std::size_t i) { p[i] += a * S[k][i]; });
+        const int o = order[k];
+        const double a = alpha[k] - rho[o] * d;
+        d = pass([&](std::size_t i) { p[i] += a * S[o][i]; },
+                 [&](std::size_t i) { return k + 1 < h ? Y[order[k + 1]][i].dot(p[i]) : g[i].dot(p[i]); });
+        if (k + 1 == h) slope = d;
       }
-      double slope = vdot(g, p);
       if (!(slope < 0)) { // not a descent direction: restart from the gradient
-        S.clear(), Y.clear(), rho.clear();
-        internal::parallel_for_each_index(n, [&](std::size_t i) { p[i] = -inverse_diagonal[i] * g[i]; });
-        slope = vdot(g, p);
+        order.clear();
+        slope = pass([&](std::size_t i) { p[i] = -inverse_diagonal[i] * g[i]; },
+                     [&](std::size_t i) { return g[i].dot(p[i]); });
         if (!(slope < 0)) break; // zero gradient
       }
       // First step (no curvature information): at most 0.1 rad per frame.
       double step = 1;
-      if (S.empty()) {
+      if (order.empty()) {
         double pmax = 0;
         for (std::size_t i = 0; i < n; ++i) pmax = std::max(pmax, p[i].norm());
         step = std::min(1.0, 0.1 / pmax);
@@ -984,17 +990,45 @@ private:
       }
       if (!accepted) break;
       ++stats_.refinement_iterations;
-      std::vector<Eigen::Vector3d> sk(n), yk(n);
-      internal::parallel_for_each_index(n, [&](std::size_t i) {
-        sk[i] = step * p[i];
-        yk[i] = g_new[i] - g[i];
-      });
-      const double sy = vdot(sk, yk);
-      if (sy > 1e-12 * std::sqrt(vdot(sk, sk) * vdot(yk, yk))) {
-        if (int(S.size()) == m) S.erase(S.begin()), Y.erase(Y.begin()), rho.erase(rho.begin());
-        S.push_back(std::move(sk));
-        Y.push_back(std::move(yk));
-        rho.push_back(1 / sy);
+      // The new pair goes into a free slot (or the oldest one's), kept only
+      // if the curvature s.y is positive.
+      int slot;
+      if (int(S.size()) < m) {
+        slot = int(S.size());
+        S.emplace_back(n), Y.emplace_back(n);
+      } else if (int(order.size()) < m) {
+        slot = 0;
+        while (std::find(order.begin(), order.end(), slot) != order.end()) ++slot;
+      } else {
+        slot = order.front();
+      }
+      std::vector<Eigen::Vector3d>& sk = S[slot];
+      std::vector<Eigen::Vector3d>& yk = Y[slot];
+      double sums[4] = {0, 0, 0, 0}; // s.y, s.s, y.y, y.Dinv.y
+      {
+        constexpr std::size_t block = 2048;
+        const std::size_t nb = (n + block - 1) / block;
+        std::vector<std::array<double, 4>> part(nb);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nb), [&](const tbb::blocked_range<std::size_t>& r) {
+          for (std::size_t bl = r.begin(); bl != r.end(); ++bl) {
+            std::array<double, 4> acc{0, 0, 0, 0};
+            for (std::size_t i = bl * block; i < std::min(n, (bl + 1) * block); ++i) {
+              sk[i] = step * p[i];
+              yk[i] = g_new[i] - g[i];
+              acc[0] += sk[i].dot(yk[i]), acc[1] += sk[i].squaredNorm(), acc[2] += yk[i].squaredNorm();
+              acc[3] += inverse_diagonal[i] * yk[i].squaredNorm();
+            }
+            part[bl] = acc;
+          }
+        });
+        for (const auto& q : part)
+          for (int k = 0; k < 4; ++k) sums[k] += q[k];
+      }
+      if (int(order.size()) == m && order.front() == slot) order.erase(order.begin());
+      if (sums[0] > 1e-12 * std::sqrt(sums[1] * sums[2])) {
+        rho[slot] = 1 / sums[0];
+        gamma_of[slot] = sums[0] / sums[3];
+        order.push_back(slot);
       }
       std::swap(q_, q_new);
       std::swap(s_, s_new);
