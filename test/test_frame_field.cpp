@@ -59,6 +59,23 @@ Eigen::Vector3d phi_inverse(const Eigen::Vector3d& X) {
   return x;
 }
 
+// Phi^{-1}([0,1]^3): a Kuhn grid of n^3 cubes in Phi-space, pulled back.
+std::unique_ptr<Mesh> pulled_back_box(int n) {
+  testing::Test_mesh m = testing::kuhn_grid(n, n, n, 1.0 / n);
+  for (auto& p : m.points) {
+    const Eigen::Vector3d x = phi_inverse(Eigen::Vector3d(p[0], p[1], p[2]));
+    p = {x(0), x(1), x(2)};
+  }
+  return make_mesh(m);
+}
+
+// g = J^T J of MATH.md section 6 sampled at the vertices.
+Field flat_metric_field(const Tr& tr) {
+  return Field(tr, [](const Tr::Point& p) {
+    return cgal_ext_test::flat_metric::metric(Eigen::Vector3d(p.x(), p.y(), p.z()));
+  });
+}
+
 } // namespace
 
 TEST_CASE("identity metric on a box: axis-aligned frames, zero energy, no singular edge", "[frame_field]") {
@@ -109,15 +126,8 @@ TEST_CASE("flat metric g = J^T J on Phi^-1(box) recovers F = J^-1, better under 
   // MATH.md section 6: the box [0,1]^3 in Phi-space, pulled back.
   std::vector<double> mean_err, max_err, boundary_mean;
   for (int n : {3, 6, 9}) {
-    testing::Test_mesh m = testing::kuhn_grid(n, n, n, 1.0 / n);
-    for (auto& p : m.points) {
-      const Eigen::Vector3d x = phi_inverse(Eigen::Vector3d(p[0], p[1], p[2]));
-      p = {x(0), x(1), x(2)};
-    }
-    auto mesh = make_mesh(m);
-    const Field field(mesh->tr, [](const Tr::Point& p) {
-      return cgal_ext_test::flat_metric::metric(Eigen::Vector3d(p.x(), p.y(), p.z()));
-    });
+    auto mesh = pulled_back_box(n);
+    const Field field = flat_metric_field(mesh->tr);
     Frames ff(field);
     const Frame_field_statistics& st = ff.compute();
     double sum = 0, mx = 0;
@@ -251,15 +261,8 @@ TEST_CASE("a ball with the identity metric has a valid singularity graph", "[fra
 }
 
 TEST_CASE("the coarse level of the initialisation changes the iterations, not the solution", "[frame_field]") {
-  testing::Test_mesh m = testing::kuhn_grid(8, 8, 8, 1.0 / 8);
-  for (auto& p : m.points) {
-    const Eigen::Vector3d x = phi_inverse(Eigen::Vector3d(p[0], p[1], p[2]));
-    p = {x(0), x(1), x(2)};
-  }
-  auto mesh = make_mesh(m);
-  const Field field(mesh->tr, [](const Tr::Point& p) {
-    return cgal_ext_test::flat_metric::metric(Eigen::Vector3d(p.x(), p.y(), p.z()));
-  });
+  auto mesh = pulled_back_box(8);
+  const Field field = flat_metric_field(mesh->tr);
   Frame_field_options opt;
   opt.linear_tolerance = 1e-10;
   opt.max_refinement_iterations = 0;

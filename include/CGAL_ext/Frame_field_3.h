@@ -11,6 +11,7 @@
 
 #include <CGAL_ext/Cell_transport_3.h>
 #include <CGAL_ext/Input_error.h>
+#include <CGAL_ext/Metric_field_3.h>
 #include <CGAL_ext/Octahedral_frame.h>
 #include <CGAL_ext/Tet_mesh_triangulation_3.h>
 
@@ -426,21 +427,18 @@ private:
   void report(const char* stage, double seconds, const std::string& detail) const {
     if (opt_.progress) opt_.progress(stage, seconds, detail);
   }
-  static Eigen::Vector3d vec(const Point_3& p) {
-    return Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
-  }
   static Point_3 point(const Eigen::Vector3d& v) { return Point_3(v(0), v(1), v(2)); }
   // The facet's centroid, area vector direction (outward of c) and area.
   static void facet_geometry(Cell_handle c, int f, Eigen::Vector3d& centroid, Eigen::Vector3d& normal, double& area) {
     // CGAL: the vertices (f+1, f+2, f+3) seen from vertex f; for a positive
     // cell, vertex_triple_index orders them so that the normal points out.
     Eigen::Vector3d p[3];
-    for (int k = 0; k < 3; ++k) p[k] = vec(c->vertex(Triangulation::vertex_triple_index(f, k))->point());
+    for (int k = 0; k < 3; ++k) p[k] = internal::to_eigen_vector(c->vertex(Triangulation::vertex_triple_index(f, k))->point());
     centroid = (p[0] + p[1] + p[2]) / 3;
     const Eigen::Vector3d a = (p[1] - p[0]).cross(p[2] - p[0]);
     area = 0.5 * a.norm();
     normal = a.normalized();
-    const Eigen::Vector3d opposite = vec(c->vertex(f)->point());
+    const Eigen::Vector3d opposite = internal::to_eigen_vector(c->vertex(f)->point());
     if (normal.dot(opposite - p[0]) > 0) normal = -normal; // outward whatever the convention
   }
   static double metric_area(const Eigen::Matrix3d& A, const Eigen::Vector3d& n, double area) {
@@ -458,7 +456,7 @@ private:
     internal::parallel_for_each_index(n, [&](std::size_t i) {
       const Cell_handle c = cells_[i];
       Eigen::Vector3d p[4];
-      for (int k = 0; k < 4; ++k) p[k] = vec(c->vertex(k)->point());
+      for (int k = 0; k < 4; ++k) p[k] = internal::to_eigen_vector(c->vertex(k)->point());
       centroid_[i] = (p[0] + p[1] + p[2] + p[3]) / 4;
       volume_[i] = std::abs((p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0]))) / 6;
       A_[i] = field_->A_at(c, point(centroid_[i]));
@@ -472,24 +470,18 @@ private:
         L.nb[f] = j;
         L.identity[f] = true;
         L.T_in[f] = Eigen::Quaterniond::Identity();
+        L.w[f] = 0;
+        // Each interior face's weight is computed by its smaller index and
+        // copied to the other side below (symmetric bit for bit); boundary
+        // weights come with the boundary data.
+        if (j < 0 || std::size_t(j) < i) continue;
         Eigen::Vector3d fc, nrm;
         double area;
         facet_geometry(c, f, fc, nrm, area);
         const Eigen::Matrix3d Af = field_->A_at(c, point(fc));
-        const double ma = metric_area(Af, nrm, area);
-        if (j >= 0) {
-          // Computed identically from both sides up to the order of the
-          // centroid difference: use the smaller index's view.
-          const std::size_t lo = std::min<std::size_t>(i, j), hi = std::max<std::size_t>(i, j);
-          const double dist = (Af * (centroid_[hi] - centroid_[lo])).norm();
-          L.w[f] = ma / dist;
-        } else {
-          L.w[f] = (Af * (fc - centroid_[i])).norm(); // the distance, turned into a weight below
-        }
+        L.w[f] = metric_area(Af, nrm, area) / (Af * (centroid_[j] - centroid_[i])).norm();
       }
     });
-    // Interior weights must be symmetric: A_at of the face from either cell
-    // agrees up to rounding; take the smaller index's value.
     for (std::size_t i = 0; i < n; ++i)
       for (int f = 0; f < 4; ++f) {
         const std::int64_t j = links_[i].nb[f];
@@ -522,8 +514,7 @@ private:
         bf.direction = Af.inverse() * nrm;
         bf.direction.normalize();
         bf.metric_area = metric_area(Af, nrm, area);
-        const double dist = links_[i].w[f];
-        links_[i].w[f] = opt_.boundary_weight * bf.metric_area / dist;
+        links_[i].w[f] = opt_.boundary_weight * bf.metric_area / (Af * (fc - centroid_[i])).norm();
         boundary_.push_back(bf);
       }
       if (boundary_.size() == first) continue;

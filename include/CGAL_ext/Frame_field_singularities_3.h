@@ -7,9 +7,13 @@
 /// The singular edges of an octahedral frame field: interior mesh edges
 /// around which the frames do not come back to themselves (MATH.md section 5).
 
+#include <CGAL_ext/Metric_field_3.h>
 #include <CGAL_ext/Octahedral_frame.h>
 
 #include <Eigen/Core>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -90,9 +94,11 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff) {
   const auto& tr = ff.metric_field().triangulation();
   std::vector<Singular_edge> out;
   std::vector<Cell_handle> loop;
-  auto vec = [](const auto& p) {
-    return Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
-  };
+  // Each tetrahedron is in about six edge loops: canonicalize its frame once.
+  std::vector<Eigen::Matrix3d> R(ff.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, R.size()), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) R[i] = ff.rotation(i);
+  });
   for (auto e = tr.finite_edges_begin(); e != tr.finite_edges_end(); ++e) {
     loop.clear();
     bool interior = true;
@@ -107,7 +113,7 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff) {
     } while (++circ != done);
     if (!interior) continue;
     const auto u = e->first->vertex(e->second), v = e->first->vertex(e->third);
-    const Eigen::Vector3d pu = vec(u->point()), pv = vec(v->point());
+    const Eigen::Vector3d pu = internal::to_eigen_vector(u->point()), pv = internal::to_eigen_vector(v->point());
     // The product of the matchings around the loop.
     const int n = int(loop.size());
     Eigen::Matrix3d P = Eigen::Matrix3d::Identity();
@@ -117,8 +123,7 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff) {
       const std::size_t ia = ff.index(a), ib = ff.index(b);
       const int fb = b->index(a); // facet of b shared with a
       const Eigen::Matrix3d T = ff.transport_into(ib, fb); // T(a->b)
-      const Eigen::Matrix3d Ra = ff.rotation(ia), Rb = ff.rotation(ib);
-      P = closest_octahedral_matching(T * Ra, Rb).G * P;
+      P = closest_octahedral_matching(T * R[ia], R[ib]).G * P;
       turn += (ff.centroid(ia) - pu).cross(ff.centroid(ib) - pu).dot(pv - pu);
     }
     const int index = octahedral_group_index(P);
@@ -137,7 +142,7 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff) {
       for (int k = 0; k < 3; ++k)
         if (P(k, k) == 1) axis_frame(k) = 1;
       const std::size_t i0 = ff.index(loop[0]);
-      const Eigen::Matrix3d R0 = ff.rotation(i0);
+      const Eigen::Matrix3d& R0 = R[i0];
       const Eigen::Vector3d t = ((pv - pu) * (turn >= 0 ? 1.0 : -1.0)).normalized();
       const Eigen::Vector3d frame_dir = (ff.sqrt_metric(i0).inverse() * (R0 * axis_frame)).normalized();
       const double c = frame_dir.dot(t);

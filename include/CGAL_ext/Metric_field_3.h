@@ -37,6 +37,14 @@
 
 namespace CGAL_ext {
 
+namespace internal {
+// A point's coordinates as an Eigen vector of doubles.
+template <class Point_3>
+Eigen::Vector3d to_eigen_vector(const Point_3& p) {
+  return Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+}
+} // namespace internal
+
 /// \ingroup PkgCGALExtMetric
 /// A metric field on the cells of a 3D triangulation, given by one SPD
 /// metric tensor `g` per vertex (an edge `e` has length `sqrt(e^T g e)`).
@@ -199,7 +207,7 @@ public:
   /// \param p a point
   Eigen::Vector4d barycentric_coordinates(Cell_handle c, const Point_3& p) const {
     const Cell_data& d = data(c);
-    const Eigen::Vector3d l = d.inverse_edges * (to_vector(p) - d.p0);
+    const Eigen::Vector3d l = d.inverse_edges * (internal::to_eigen_vector(p) - d.p0);
     return Eigen::Vector4d(1 - l.sum(), l(0), l(1), l(2));
   }
 
@@ -210,7 +218,7 @@ public:
   /// \returns `A(p)` (3x3, symmetric)
   Eigen::Matrix3d A_at(Cell_handle c, const Point_3& p) const {
     const Cell_data& d = data(c);
-    const Eigen::Vector3d l = d.inverse_edges * (to_vector(p) - d.p0);
+    const Eigen::Vector3d l = d.inverse_edges * (internal::to_eigen_vector(p) - d.p0);
     const Eigen::Matrix3d& A0 = sqrt_[get(vim_, c->vertex(0))];
     Eigen::Matrix3d A = A0;
     for (int v = 1; v < 4; ++v) A += l(v - 1) * (sqrt_[get(vim_, c->vertex(v))] - A0);
@@ -302,9 +310,6 @@ private:
 
   static std::string vertex_name(std::size_t i) { return "vertex " + std::to_string(i + 1); }
 
-  static Eigen::Vector3d to_vector(const Point_3& p) {
-    return Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
-  }
 
   std::size_t checked_index(Vertex_handle v) const {
     const std::size_t i = get(vim_, v);
@@ -347,9 +352,9 @@ private:
   }
 
   void compute(Cell_handle c, Cell_data& d) const {
-    d.p0 = to_vector(c->vertex(0)->point());
+    d.p0 = internal::to_eigen_vector(c->vertex(0)->point());
     Eigen::Matrix3d E;
-    for (int v = 1; v < 4; ++v) E.col(v - 1) = to_vector(c->vertex(v)->point()) - d.p0;
+    for (int v = 1; v < 4; ++v) E.col(v - 1) = internal::to_eigen_vector(c->vertex(v)->point()) - d.p0;
     d.inverse_edges = E.inverse();
     const Eigen::Matrix3d& A0 = sqrt_[get(vim_, c->vertex(0))];
     std::array<Eigen::Matrix3d, 3> dA; // dA[k] = d A / d x_k

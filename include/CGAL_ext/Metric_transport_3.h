@@ -175,7 +175,7 @@ public:
                                     Cell_handle hint = Cell_handle()) const {
     check_tolerance(opt);
     Metric_transport_result res;
-    const Eigen::Vector3d pa = vec(a), pb = vec(b);
+    const Eigen::Vector3d pa = internal::to_eigen_vector(a), pb = internal::to_eigen_vector(b);
     if (!pa.allFinite() || !pb.allFinite()) return failure(res, "a coordinate is not finite", res.exit_t);
 
     std::vector<Piece> pieces;
@@ -301,9 +301,6 @@ public:
   }
 
 private:
-  static Eigen::Vector3d vec(const Point_3& p) {
-    return Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
-  }
 
   static void check_tolerance(const Transport_options& opt) {
     if (!(opt.tolerance > 0) || !std::isfinite(opt.tolerance))
@@ -316,8 +313,8 @@ private:
     int k = 0;
     for (int m = 0; m < 4; ++m)
       if (c->vertex(m) != u && c->vertex(m) != v) w[k++] = c->vertex(m);
-    const Eigen::Vector3d o = vec(u->point()), e = vec(v->point()) - o;
-    const Eigen::Vector3d n1 = e.cross(vec(w[0]->point()) - o), n2 = e.cross(vec(w[1]->point()) - o);
+    const Eigen::Vector3d o = internal::to_eigen_vector(u->point()), e = internal::to_eigen_vector(v->point()) - o;
+    const Eigen::Vector3d n1 = e.cross(internal::to_eigen_vector(w[0]->point()) - o), n2 = e.cross(internal::to_eigen_vector(w[1]->point()) - o);
     return std::atan2(n1.cross(n2).norm(), n1.dot(n2));
   }
 
