@@ -54,19 +54,33 @@ double thread_seconds() {
   return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
 
+// Evicts the caches (writes a buffer larger than the last-level cache), so
+// that every measured run starts from the same state: the data of the
+// segments is not in cache, as for queries at random places of a large
+// mesh. Without it, a run profits from the data its predecessor loaded,
+// which favours whichever walk shares memory with the one run before it.
+void evict_caches() {
+  static std::vector<unsigned char> buffer(std::size_t(128) << 20);
+  for (std::size_t i = 0; i < buffer.size(); i += 64) buffer[i] = static_cast<unsigned char>(buffer[i] + 1);
+}
+
 // Runs the three measured functions in interleaved rounds (so that a load
-// change on the machine affects them alike) and keeps the best time of each.
-// Each function returns the number of cells it reported.
+// change on the machine affects them alike), each after evicting the
+// caches, and keeps the best time of each. Each function returns the
+// number of cells it reported.
 template <class F0, class F1, class F2>
 void interleaved(int rounds, F0 f0, F1 f1, F2 f2, double (&best)[3], std::size_t (&cells)[3]) {
   for (int i = 0; i < 3; ++i) best[i] = 1e300;
   for (int r = 0; r < rounds; ++r) {
+    evict_caches();
     double t = thread_seconds();
     cells[0] = f0();
     best[0] = std::min(best[0], thread_seconds() - t);
+    evict_caches();
     t = thread_seconds();
     cells[1] = f1();
     best[1] = std::min(best[1], thread_seconds() - t);
+    evict_caches();
     t = thread_seconds();
     cells[2] = f2();
     best[2] = std::min(best[2], thread_seconds() - t);

@@ -524,3 +524,74 @@ TEST_CASE("segment walk: hints, point locator, concurrent use of one walker", "[
   REQUIRE(l.dimension == 2);
   CHECK(l.cell->info().in_domain());
 }
+
+TEST_CASE("cell array of the walk: handle index and adjacency copy", "[segment_walk]") {
+  // Handle_index on pointers into one buffer, visited in an order that
+  // interleaves "blocks": a small block inside the gap between two others
+  // (the case where merging runs across gaps must not hide elements), a
+  // block far away, and free slots inside blocks.
+  std::vector<int> buffer(10000);
+  std::vector<int*> handles;
+  for (int i = 0; i < 100; ++i)
+    if (i % 7 != 3) handles.push_back(&buffer[i]);
+  for (int i = 1000; i < 1100; ++i) handles.push_back(&buffer[i]);
+  for (int i = 300; i < 310; ++i) handles.push_back(&buffer[i]);
+  for (int i = 9000; i < 9050; ++i) handles.push_back(&buffer[i]);
+  internal::Handle_index<int*> index;
+  for (int* h : handles) index.push_back(h);
+  index.finish();
+  std::set<std::uint32_t> seen;
+  for (int* h : handles) {
+    const std::uint32_t i = index(h);
+    REQUIRE(i != internal::Handle_index<int*>::none);
+    CHECK(i < index.size());
+    CHECK(seen.insert(i).second);
+  }
+  CHECK(index.number_of_runs() == 2); // [0, 1100) merged across gaps of < 1024 slots; [9000, 9050)
+  CHECK(index(&buffer[5000]) == internal::Handle_index<int*>::none);
+  CHECK(index(&buffer[9999]) == internal::Handle_index<int*>::none);
+
+  // The copy of a Delaunay triangulation with an excluded pocket: records
+  // reproduce vertices, neighbours and mirror indices; non-domain
+  // neighbours are links to outside.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<DT::Point> pts;
+  for (int i = 0; i < 3000; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
+  DT dt(pts.begin(), pts.end());
+  const auto in_domain = [&dt](DT::Cell_handle c) {
+    const auto g = CGAL::centroid(dt.tetrahedron(c));
+    return !(g.x() < 0.5 && g.y() < 0.5);
+  };
+  const internal::Walk_cell_array_3<DT> a(dt, in_domain);
+  REQUIRE(a.valid());
+  std::size_t n_domain = 0;
+  for (DT::Cell_handle c : dt.finite_cell_handles()) {
+    const std::uint32_t ci = a.index(c);
+    if (!in_domain(c)) {
+      CHECK(ci == a.outside);
+      continue;
+    }
+    ++n_domain;
+    REQUIRE(ci < a.records.size());
+    CHECK(a.cell_handles[ci] == c);
+    const auto& r = a.records[ci];
+    for (int l = 0; l < 4; ++l) {
+      CHECK(a.vertex_handles[std::size_t(r.v[l])] == c->vertex(l));
+      const double* x = a.point(r.v[l]);
+      CHECK((x[0] == c->vertex(l)->point().x() && x[1] == c->vertex(l)->point().y() && x[2] == c->vertex(l)->point().z()));
+      const DT::Cell_handle n = c->neighbor(l);
+      if (dt.is_infinite(n) || !in_domain(n)) {
+        CHECK(r.n[l] == a.outside);
+      } else {
+        REQUIRE(r.n[l] != a.outside);
+        CHECK(a.cell_handles[r.n[l] >> 2] == n);
+        CHECK(int(r.n[l] & 3u) == n->index(c));
+      }
+    }
+  }
+  CHECK(a.records.size() == n_domain);
+  for (DT::Cell_handle c : dt.all_cell_handles())
+    if (dt.is_infinite(c)) CHECK(a.index(c) == a.outside);
+  CHECK(a.index(DT::Cell_handle()) == a.outside);
+}

@@ -9,6 +9,7 @@
 /// interval of each piece, and the gaps outside the domain.
 
 #include <CGAL_ext/Tet_mesh_triangulation_3.h>
+#include <CGAL_ext/internal/Walk_cell_array_3.h>
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -21,6 +22,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <memory>
 #include <mutex>
 #include <sstream>
@@ -61,6 +63,22 @@ namespace internal {
 // orientation(facet, vertex i) is positive (the cell is on the positive side).
 inline constexpr std::array<int, 3> walk_inner_facet_table[4] = {{2, 1, 3}, {2, 3, 0}, {0, 3, 1}, {0, 1, 2}};
 inline const std::array<int, 3>& walk_inner_facet(int i) { return walk_inner_facet_table[i]; }
+// Output iterators that are std::back_inserter of a std::vector<Piece> get
+// the pieces built in place: building a piece in a temporary and copying it
+// makes the wide loads of the copy wait for the narrow stores that built it
+// (a store-forwarding stall, a fifth of the time of the fast walk).
+template <class It, class Piece>
+struct Is_vector_back_inserter : std::false_type {};
+template <class Piece, class Alloc>
+struct Is_vector_back_inserter<std::back_insert_iterator<std::vector<Piece, Alloc>>, Piece> : std::true_type {};
+template <class C>
+C& back_inserter_container(std::back_insert_iterator<C>& it) {
+  struct Access : std::back_insert_iterator<C> {
+    static C* get(std::back_insert_iterator<C>& i) { return i.*(&Access::container); }
+  };
+  return *Access::get(it);
+}
+
 inline int walk_popcount(unsigned m) { return int(m & 1u) + int((m >> 1) & 1u) + int((m >> 2) & 1u) + int((m >> 3) & 1u); }
 
 } // namespace internal
@@ -147,6 +165,10 @@ public:
     // Every simplex is reported at most once and every star is searched at
     // most once per simplex: this bound is never reached on a valid input.
     max_steps_ = 64 * (tr.number_of_cells() + 4) + 1024;
+    if (double_coordinates) {
+      auto a = std::make_shared<const Cell_array>(tr, in_domain_);
+      if (a->valid()) cells_ = std::move(a);
+    }
   }
 
   /// Walker whose domain is every finite cell (only for `Is_finite_cell`).
@@ -239,6 +261,7 @@ private:
   using Tri_iterator = typename std::vector<Triangle>::const_iterator;
   using Primitive = CGAL::AABB_triangle_primitive<Kernel, Tri_iterator>;
   using AABB = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+  using Cell_array = internal::Walk_cell_array_3<Tr>;
 
   // A face of cell c: the vertices of c whose bit is set in mask (mask 0: none / outside).
   struct Simplex {
@@ -269,6 +292,12 @@ private:
   struct Ctx {
     Point q, p;
     double qx, qy, qz, dx, dy, dz, dd;
+    double px, py, pz;
+    // Static filter bounds of the cell-array walk (valid iff `fast`): any
+    // det[D, a - q, b - q] of mesh vertices computed in double is within E
+    // of the exact value, any (v - p).D within Er.
+    bool fast = false;
+    double E = 0, Er = 0;
     std::size_t steps = 0;
     std::size_t max_steps;
     // gap search: candidates sorted by the exact parameter of their first point
@@ -280,6 +309,7 @@ private:
       qx = CGAL::to_double(q.x()); qy = CGAL::to_double(q.y()); qz = CGAL::to_double(q.z());
       dx = CGAL::to_double(p.x()) - qx; dy = CGAL::to_double(p.y()) - qy; dz = CGAL::to_double(p.z()) - qz;
       dd = dx * dx + dy * dy + dz * dz;
+      px = CGAL::to_double(p.x()); py = CGAL::to_double(p.y()); pz = CGAL::to_double(p.z());
     }
     void tick() {
       if (++steps > max_steps) {
@@ -310,10 +340,22 @@ private:
       if (!Full && zero) return;
       *out++ = w->make_piece(s, a, b);
     }
+    // The face `mask` of record ci of the cell array.
+    void operator()(std::uint32_t ci, unsigned mask, double a, double b, bool zero) {
+      if (!Full && zero) return;
+      if constexpr (internal::Is_vector_back_inserter<OutputIterator, Piece>::value)
+        w->fill_piece(internal::back_inserter_container(out).emplace_back(), ci, mask, a, b);
+      else
+        *out++ = w->make_piece(ci, mask, a, b);
+    }
   };
   struct Last_sink {
+    const Segment_walk_3* w;
     Simplex last;
     void operator()(const Simplex& s, double, double, bool) { last = s; }
+    void operator()(std::uint32_t ci, unsigned mask, double, double, bool) {
+      last = Simplex{w->cells_->cell_handles[ci], mask};
+    }
   };
 
   Piece make_piece(const Simplex& s, double a, double b) const {
@@ -327,6 +369,23 @@ private:
       if (s.mask & (1u << i)) r.vertices[k++] = s.c->vertex(i);
     r.dimension = k - 1;
     return r;
+  }
+
+  // The same from the cell array, without touching the triangulation's cell.
+  Piece make_piece(std::uint32_t ci, unsigned mask, double a, double b) const {
+    Piece r;
+    fill_piece(r, ci, mask, a, b);
+    return r;
+  }
+  void fill_piece(Piece& r, std::uint32_t ci, unsigned mask, double a, double b) const {
+    r.t_in = a;
+    r.t_out = b;
+    r.cell = cells_->cell_handles[ci];
+    const typename Cell_array::Record& rec = cells_->records[ci];
+    int k = 0;
+    for (int i = 0; i < 4; ++i)
+      if (mask & (1u << i)) r.vertices[k++] = cells_->vertex_handles[std::size_t(rec.v[i])];
+    r.dimension = k - 1;
   }
 
   static void check_finite(const Point& x, const char* what) {
@@ -345,6 +404,18 @@ private:
     check_finite(q, Full ? "operator()" : "fast");
     check_finite(p, Full ? "operator()" : "fast");
     Sink<Full, OutputIterator> sink{this, out};
+    if (cells_ && !(q == p)) {
+      // Common case first: q strictly inside the hint cell, found in the cell array.
+      Ctx x(q, p, max_steps_);
+      if (prepare_fast(x)) {
+        const std::uint32_t ci = cells_->index(hint);
+        Next nx;
+        if (ci != Cell_array::outside && array_start(x, hint, ci, nx, sink)) {
+          finish(x, nx, sink);
+          return sink.out;
+        }
+      }
+    }
     const Simplex start = locate_simplex(q, hint);
     if (q == p) {
       *sink.out++ = make_piece(start, 0.0, 1.0);
@@ -426,6 +497,7 @@ private:
   template <class S>
   void walk(const Point& q, const Point& p, Simplex start, S& sink) const {
     Ctx x(q, p, max_steps_);
+    prepare_fast(x);
     Next nx;
     if (!start.valid()) {
       nx = gap(x, Simplex(), 0.0, sink);
@@ -434,6 +506,10 @@ private:
       nx.s = start;
       nx.t = 0.0;
     }
+    finish(x, nx, sink);
+  }
+  template <class S>
+  void finish(Ctx& x, Next nx, S& sink) const {
     while (!nx.done) {
       x.tick();
       nx = from_point(x, nx, sink);
@@ -453,6 +529,10 @@ private:
       while (s.mask & (1u << k)) ++k;
       const Cell_handle n = s.c->neighbor(k);
       if (!is_domain_cell(n)) return gap(x, s, t, sink);
+      if (x.fast) {
+        const std::uint32_t ni = cells_->index(n);
+        if (ni != Cell_array::outside) return array_cells(x, ni, n->index(s.c), t, sink);
+      }
       return fast_cells(x, n, n->index(s.c), t, sink);
     }
     const Simplex tt = enter(x, s);
@@ -566,6 +646,209 @@ private:
       sink(fct, t_out, t_out, true);
       j = n->index(c);
       c = n;
+      t_in = t_out;
+    }
+  }
+
+  // ------------------------------------------------ walk in the cell array
+  // The generic step again, on the cell array, with each vertex turned once
+  // into Pluecker-style data relative to the segment line L = q + t D:
+  //   w = v - q,  u = D x w,  rho = (v - p) . D.
+  // Then pi(a, b) = u_a . w_b = det[D, a - q, b - q] has the sign of
+  // orientation(q, p, a, b), so the exit facet costs one cross product per
+  // new vertex and two dot products. For a facet (g0, g1, g2) with the cell
+  // on its positive side crossed outwards, mu_i = -pi(g_{i+1}, g_{i+2}) are
+  // the barycentric weights of the crossing point X (S = sum mu_i > 0), and
+  //   G = sum mu_i rho_i = |D|^2 det[g1 - g0, g2 - g0, p - g0]
+  // (a polynomial identity), so sign(G) = orientation(g0, g1, g2, p) tells
+  // whether p was reached, and t = 1 + G / (S |D|^2). Every sign is
+  // certified by a static error bound for the whole segment (E, Er, derived
+  // like CGAL's static filters from bounds on the coordinate differences,
+  // with a safety factor of about 2), else the exact predicate decides.
+  struct Vertex_data {
+    double w[3], u[3], rho;
+  };
+  struct Array_state {
+    Vertex_data pool[4];
+    // Pool entry of local vertex l of the current cell: bits 2l, 2l + 1
+    // (kept in a register; a small array here costs store-forwarding stalls).
+    unsigned slots = 0xE4u; // identity: 3 2 1 0
+    int slot(int l) const { return int((slots >> (2 * l)) & 3u); }
+    Vertex_data& at(int l) { return pool[slot(l)]; }
+  };
+
+  // Sets x.fast and the error bounds; false if the bounds cannot be used
+  // (no cell array, or coordinates so small or large that products could
+  // underflow or overflow).
+  bool prepare_fast(Ctx& x) const {
+    x.fast = false;
+    if (!cells_) return false;
+    const double q[3] = {x.qx, x.qy, x.qz}, p[3] = {x.px, x.py, x.pz}, d[3] = {x.dx, x.dy, x.dz};
+    double m[3], mp[3];
+    for (int i = 0; i < 3; ++i) {
+      // Rounding is monotone: |fl(v - q)| <= max(fl(hi - q), fl(q - lo)) for every vertex v.
+      m[i] = std::max(std::max(cells_->hi[i] - q[i], q[i] - cells_->lo[i]), std::fabs(d[i]));
+      mp[i] = std::max(cells_->hi[i] - p[i], p[i] - cells_->lo[i]);
+      if (!(m[i] >= 1e-50 && m[i] <= 1e50 && mp[i] <= 1e50)) return false;
+      mp[i] = std::max(mp[i], 1e-50);
+    }
+    // det of three rows of rounded differences: 6 terms of at most m0 m1 m2,
+    // about 8 roundings each: < 5.4e-15 m0 m1 m2. A dot of a rounded
+    // difference with D: < 5.1 u sum mp_i |d_i|.
+    x.E = 1e-14 * m[0] * m[1] * m[2];
+    x.Er = 1e-15 * (mp[0] * std::fabs(d[0]) + mp[1] * std::fabs(d[1]) + mp[2] * std::fabs(d[2]));
+    x.fast = true;
+    return true;
+  }
+  void load_vertex(const Ctx& x, std::int32_t k, Vertex_data& v) const { load_vertex(x, cells_->point(k), v); }
+  static void load_vertex(const Ctx& x, const double* a, Vertex_data& v) {
+    v.w[0] = a[0] - x.qx;
+    v.w[1] = a[1] - x.qy;
+    v.w[2] = a[2] - x.qz;
+    v.u[0] = x.dy * v.w[2] - x.dz * v.w[1];
+    v.u[1] = x.dz * v.w[0] - x.dx * v.w[2];
+    v.u[2] = x.dx * v.w[1] - x.dy * v.w[0];
+    v.rho = (a[0] - x.px) * x.dx + (a[1] - x.py) * x.dy + (a[2] - x.pz) * x.dz;
+  }
+  // det[D, a - q, b - q] in double.
+  static double pi(const Vertex_data& a, const Vertex_data& b) { return a.u[0] * b.w[0] + a.u[1] * b.w[1] + a.u[2] * b.w[2]; }
+  const Point& array_point(std::int32_t k) const { return cells_->vertex_handles[std::size_t(k)]->point(); }
+  // Sign of orientation(q, p, a, b), given its value v in double.
+  CGAL::Orientation side(const Ctx& x, double v, std::int32_t a, std::int32_t b) const {
+    if (v > x.E) return CGAL::POSITIVE;
+    if (v < -x.E) return CGAL::NEGATIVE;
+    return orient4(x.q, x.p, array_point(a), array_point(b));
+  }
+
+  // Starts in record ci if q is certified strictly inside it and the line
+  // certified to leave it through the interior of a facet; otherwise
+  // returns false without output (the general path then starts over).
+  // The vertices are read through the cell handle c (the cell of record
+  // ci), so that loading them overlaps with the look-up of the record.
+  template <class S>
+  bool array_start(Ctx& x, Cell_handle c, std::uint32_t ci, Next& nx, S& sink) const {
+#if defined(__GNUC__)
+    __builtin_prefetch(&cells_->records[ci]);
+#endif
+    Array_state st;
+    for (int l = 0; l < 4; ++l) {
+      const Point& a = pt(c, l);
+      const double xyz[3] = {CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z())};
+      load_vertex(x, xyz, st.pool[l]);
+    }
+    const Vertex_data* P = st.pool;
+    // q strictly inside: orientation(g0, g1, g2, q) = -sign det[g0 - q, g1 - q, g2 - q] > 0.
+    for (int i = 0; i < 4; ++i) {
+      const std::array<int, 3>& g = internal::walk_inner_facet(i);
+      const double* a = P[g[0]].w;
+      const double *b = P[g[1]].w, *c = P[g[2]].w;
+      const double det = a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+      if (!(det < -x.E)) return false;
+    }
+    int k = -1;
+    for (int i = 0; i < 4 && k < 0; ++i) {
+      const std::array<int, 3>& g = internal::walk_inner_facet(i);
+      if (-pi(P[g[1]], P[g[2]]) > x.E && -pi(P[g[2]], P[g[0]]) > x.E && -pi(P[g[0]], P[g[1]]) > x.E) k = i;
+    }
+    if (k < 0) return false;
+    nx = array_loop(x, st, ci, k, true, 0.0, sink);
+    return true;
+  }
+
+  // Entered record ci through the interior of its facet j at t_in.
+  template <class S>
+  Next array_cells(Ctx& x, std::uint32_t ci, int j, double t_in, S& sink) const {
+    const typename Cell_array::Record& r = cells_->records[ci];
+    Array_state st;
+    for (int l = 0; l < 4; ++l) {
+      if (l != j) load_vertex(x, r.v[l], st.pool[l]);
+    }
+    return array_loop(x, st, ci, j, false, t_in, sink);
+  }
+
+  // The loop: in record ci, entered through facet j (or, if have_exit, with
+  // the exit facet j already chosen and every vertex loaded).
+  template <class S>
+  Next array_loop(Ctx& x, Array_state& st, std::uint32_t ci, int j, bool have_exit, double t_in, S& sink) const {
+    const auto& recs = cells_->records;
+    const typename Cell_array::Record* r = &recs[ci];
+    for (;;) {
+      x.tick();
+      int k = j;
+      if (!have_exit) {
+        const std::array<int, 3>& f = internal::walk_inner_facet(j);
+        Vertex_data& d = st.at(j);
+        load_vertex(x, r->v[j], d);
+        // The segment enters through facet (a, b, c) from its negative side;
+        // the plane (q, p, d) separates its vertices. With the three signs
+        // certified, the exit is chosen without a branch (the choice is
+        // random for the branch predictor); otherwise exact signs decide.
+        const double va = pi(d, st.at(f[0])), vb = pi(d, st.at(f[1])), vc = pi(d, st.at(f[2]));
+        if (std::min(std::fabs(va), std::min(std::fabs(vb), std::fabs(vc))) > x.E) {
+          // a > 0: b < 0 -> f2, b > 0 -> f0; a < 0: c > 0 -> f1, c < 0 -> f0
+          const unsigned code = unsigned(va > 0) | unsigned(vb > 0) << 1 | unsigned(vc > 0) << 2;
+          k = f[(0x01210020u >> (4 * code)) & 3u];
+        } else {
+          k = -1;
+          const CGAL::Orientation sa = side(x, va, r->v[j], r->v[f[0]]);
+          if (sa == CGAL::POSITIVE) {
+            const CGAL::Orientation sb = side(x, vb, r->v[j], r->v[f[1]]);
+            if (sb == CGAL::NEGATIVE) k = f[2];
+            else if (sb == CGAL::POSITIVE) k = f[0];
+          } else if (sa == CGAL::NEGATIVE) {
+            const CGAL::Orientation sc = side(x, vc, r->v[j], r->v[f[2]]);
+            if (sc == CGAL::POSITIVE) k = f[1];
+            else if (sc == CGAL::NEGATIVE) k = f[0];
+          }
+        }
+        if (k < 0) return traverse_cell(x, cells_->cell_handles[ci], t_in, sink); // through an edge or a vertex
+      }
+      have_exit = false;
+      // Exit facet (g0, g1, g2), the cell on its positive side.
+      const std::array<int, 3>& g = internal::walk_inner_facet(k);
+      const Vertex_data &a = st.at(g[0]), &b = st.at(g[1]), &c = st.at(g[2]);
+      const double m0 = -pi(b, c), m1 = -pi(c, a), m2 = -pi(a, b);
+      const double G = m0 * a.rho + m1 * b.rho + m2 * c.rho;
+      // |G~ - G| <= sum E |rho~| + (|mu~| + E) Er + 3.5 u |mu~ rho~| (see above), plus a floor for underflow.
+      const double err = 1.01 * (x.E * (std::fabs(a.rho) + std::fabs(b.rho) + std::fabs(c.rho)) +
+                                 x.Er * (std::fabs(m0) + std::fabs(m1) + std::fabs(m2) + 3 * x.E) +
+                                 4e-16 * (std::fabs(m0 * a.rho) + std::fabs(m1 * b.rho) + std::fabs(m2 * c.rho))) +
+                         1e-300;
+      int op = G > err ? 1 : G < -err ? -1 : 2;
+      if (op == 2) op = int(orient4(array_point(r->v[g[0]]), array_point(r->v[g[1]]), array_point(r->v[g[2]]), x.p));
+      if (op >= 0) {
+        sink(ci, 15u, t_in, 1.0, false);
+        if (op == 0) sink(ci, 15u & ~(1u << k), 1.0, 1.0, true);
+        return Next();
+      }
+      const double t_out = clamp_t(1.0 + G / ((m0 + m1 + m2) * x.dd), t_in);
+      sink(ci, 15u, t_in, t_out, false);
+      const std::uint32_t link = r->n[k];
+      if (link == Cell_array::outside)
+        return Next{false, Simplex{cells_->cell_handles[ci], 15u & ~(1u << k)}, t_out, true};
+      sink(ci, 15u & ~(1u << k), t_out, t_out, true);
+      // Move to the neighbour n; its vertex opposite the shared facet takes
+      // the pool entry of the vertex k left behind.
+      const std::uint32_t ni = link >> 2;
+      const int m = int(link & 3u);
+      const typename Cell_array::Record* rn = &recs[ni];
+      unsigned slots = 0;
+      for (int i = 0; i < 4; ++i) {
+        const std::int32_t id = rn->v[i];
+        unsigned sl = 0;
+        for (int l = 0; l < 4; ++l) sl |= r->v[l] == id ? unsigned(st.slot(l)) : 0u;
+        if (i == m) sl = unsigned(st.slot(k)); // the new vertex takes the entry left behind
+        slots |= sl << (2 * i);
+      }
+      st.slots = slots;
+#if defined(__GNUC__)
+      // Start loading the three possible next records while this one is processed.
+      for (int i = 0; i < 4; ++i)
+        if (i != m && rn->n[i] != Cell_array::outside) __builtin_prefetch(&recs[rn->n[i] >> 2]);
+#endif
+      r = rn;
+      ci = ni;
+      j = m;
       t_in = t_out;
     }
   }
@@ -1057,7 +1340,7 @@ private:
     // Exact fallback: walk from a vertex of c to x.
     const Point& v = pt(c, 0);
     if (v == x) return Simplex{c, 1u};
-    Last_sink sink;
+    Last_sink sink{this, Simplex()};
     walk(v, x, Simplex{c, 1u}, sink);
     return sink.last;
   }
@@ -1065,6 +1348,7 @@ private:
   const Tr* tr_;
   Domain_predicate in_domain_;
   std::shared_ptr<Shared> shared_;
+  std::shared_ptr<const Cell_array> cells_; // null if the walk cannot use it
   typename Kernel::Orientation_3 orient_;
   typename Kernel::Coplanar_orientation_3 coplanar_orient_;
   typename Kernel::Collinear_are_strictly_ordered_along_line_3 strictly_ordered_;

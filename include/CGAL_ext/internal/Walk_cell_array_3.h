@@ -1,0 +1,249 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_EXT_INTERNAL_WALK_CELL_ARRAY_3_H
+#define CGAL_EXT_INTERNAL_WALK_CELL_ARRAY_3_H
+
+/// \file Walk_cell_array_3.h
+/// A compact, read-only copy of the domain cells of a triangulation, laid out
+/// for the inner loop of `Segment_walk_3`: 32-byte cell records in Morton
+/// order of their centroids, vertex coordinates in one array, and the handle
+/// tables to go back to the triangulation.
+
+#include <CGAL/number_utils.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+namespace CGAL_ext {
+namespace internal {
+
+/// Dense index of the elements of a CGAL `Compact_container` (the cells or
+/// vertices of a triangulation data structure) from their handles, without
+/// a hash table. The elements live in a few large blocks, so their addresses
+/// form a few runs of consecutive slots with small gaps (free slots, block
+/// sentinels). After `finish()`, the runs, sorted by address and merged
+/// across small gaps, number their slots, gaps included: the index of an
+/// element is the number of its slot, and a lookup is a binary search over
+/// the runs. Any other container also works, with one run per element at
+/// worst.
+///
+/// \tparam Handle a CGAL handle (pointer-like; `&*h` is the element address)
+template <class Handle>
+class Handle_index {
+public:
+  /// No element.
+  static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+
+  /// Adds `h`.
+  /// \param h the handle
+  void push_back(Handle h) {
+    const std::uintptr_t a = address(h);
+    if (!runs_.empty() && a == runs_.back().begin + std::uintptr_t(runs_.back().count) * stride)
+      ++runs_.back().count;
+    else
+      runs_.push_back({a, 0u, 1u});
+  }
+  /// Sorts and merges the runs and numbers the slots; call once, after the
+  /// last `push_back` and before any look-up.
+  void finish() {
+    std::sort(runs_.begin(), runs_.end(), [](const Run& x, const Run& y) { return x.begin < y.begin; });
+    std::vector<Run> merged;
+    for (const Run& r : runs_) {
+      if (!merged.empty()) {
+        Run& m = merged.back();
+        const std::uintptr_t end = m.begin + std::uintptr_t(m.count) * stride;
+        // Sorted, disjoint runs: nothing lies between m and r.
+        if (r.begin >= end && (r.begin - end) % stride == 0 && (r.begin - end) / stride <= max_gap) {
+          m.count += std::uint32_t((r.begin - end) / stride) + r.count;
+          continue;
+        }
+      }
+      merged.push_back(r);
+    }
+    size_ = 0;
+    for (Run& m : merged) {
+      m.first = size_;
+      size_ += m.count;
+    }
+    runs_.swap(merged);
+  }
+  /// Slot index of `h`, or `none` if it is in no run.
+  /// \param h the handle
+  std::uint32_t operator()(Handle h) const {
+    const std::uintptr_t a = address(h);
+    auto it = std::upper_bound(runs_.begin(), runs_.end(), a, [](std::uintptr_t x, const Run& r) { return x < r.begin; });
+    if (it == runs_.begin()) return none;
+    --it;
+    const std::uintptr_t off = a - it->begin;
+    if (off % stride != 0 || off / stride >= it->count) return none;
+    return it->first + std::uint32_t(off / stride);
+  }
+  /// Number of slots (elements and gaps), after `finish()`.
+  std::uint32_t size() const { return size_; }
+  /// Number of runs.
+  std::size_t number_of_runs() const { return runs_.size(); }
+
+private:
+  static constexpr std::uintptr_t stride = sizeof(decltype(*std::declval<Handle>()));
+  static constexpr std::uintptr_t max_gap = 1024;
+  static std::uintptr_t address(Handle h) { return reinterpret_cast<std::uintptr_t>(&*h); }
+  struct Run {
+    std::uintptr_t begin;
+    std::uint32_t first, count;
+  };
+  std::vector<Run> runs_;
+  std::uint32_t size_ = 0;
+};
+
+/// The domain cells of a 3D triangulation with double coordinates, copied
+/// into flat arrays for the segment walk. Each cell keeps the local vertex
+/// and neighbour numbering of the triangulation, so that local indices and
+/// facet masks mean the same in both.
+///
+/// Memory: 32 bytes per domain cell for the record, 8 for its handle, 4 per
+/// cell slot of the triangulation for the index table, 32 per vertex slot.
+///
+/// \tparam Tr a CGAL `Triangulation_3` whose points have double coordinates
+template <class Tr>
+class Walk_cell_array_3 {
+public:
+  /// Cell handle type.
+  using Cell_handle = typename Tr::Cell_handle;
+  /// Vertex handle type.
+  using Vertex_handle = typename Tr::Vertex_handle;
+
+  /// One domain cell: its vertex indices, and per facet the neighbour across
+  /// it as `(cell index << 2) | (index of this cell in the neighbour)`, or
+  /// `outside` if the neighbour is not a domain cell.
+  struct alignas(32) Record {
+    std::int32_t v[4]; ///< vertex indices (into `xyz` / `vertex_handles`)
+    std::uint32_t n[4]; ///< neighbour links
+  };
+  /// Link to a cell that is not in the domain; also "no cell".
+  static constexpr std::uint32_t outside = std::numeric_limits<std::uint32_t>::max();
+
+  /// Builds the arrays. The domain predicate is evaluated once per finite cell.
+  /// \tparam Domain_predicate unary predicate on `Cell_handle`
+  /// \param tr the triangulation (dimension 3)
+  /// \param in_domain the domain predicate
+  template <class Domain_predicate>
+  Walk_cell_array_3(const Tr& tr, const Domain_predicate& in_domain) {
+    // Vertices in the order of the triangulation (spatially sorted on insertion).
+    for (auto v = tr.tds().vertices_begin(); v != tr.tds().vertices_end(); ++v) vertex_index_.push_back(v);
+    vertex_index_.finish();
+    const std::uint32_t nv = vertex_index_.size();
+    vertex_handles.resize(nv);
+    xyz.assign(3 * std::size_t(nv), std::numeric_limits<double>::quiet_NaN());
+    // Domain cells, in iteration order first.
+    std::vector<Cell_handle> domain;
+    for (auto c = tr.tds().cells_begin(); c != tr.tds().cells_end(); ++c) cell_index_.push_back(c);
+    cell_index_.finish();
+    std::vector<std::uint32_t> iteration_to_domain(cell_index_.size(), outside); // by slot
+    for (auto c = tr.tds().cells_begin(); c != tr.tds().cells_end(); ++c) {
+      if (tr.is_infinite(c) || !in_domain(Cell_handle(c))) continue;
+      iteration_to_domain[cell_index_(c)] = std::uint32_t(domain.size());
+      domain.push_back(c);
+    }
+    if (domain.size() >= (std::size_t(1) << 30)) { // links keep 30 bits for the index
+      domain_to_compact_.clear();
+      return;
+    }
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::numeric_limits<double>::infinity();
+      hi[d] = -std::numeric_limits<double>::infinity();
+    }
+    for (Cell_handle c : domain)
+      for (int i = 0; i < 4; ++i) {
+        const Vertex_handle v = c->vertex(i);
+        const std::uint32_t k = vertex_index_(v);
+        if (vertex_handles[k] != Vertex_handle()) continue;
+        vertex_handles[k] = v;
+        for (int d = 0; d < 3; ++d) {
+          const double x = CGAL::to_double(v->point()[d]);
+          xyz[3 * std::size_t(k) + d] = x;
+          lo[d] = std::min(lo[d], x);
+          hi[d] = std::max(hi[d], x);
+        }
+      }
+    // Morton order of the centroids: cells met one after the other by a walk
+    // share cache lines and pages far more often than in allocation order.
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> key(domain.size());
+    for (std::size_t i = 0; i < domain.size(); ++i) {
+      std::uint64_t code = 0;
+      for (int d = 0; d < 3; ++d) {
+        double g = 0;
+        for (int l = 0; l < 4; ++l) g += xyz[3 * std::size_t(vertex_index_(domain[i]->vertex(l))) + d];
+        const double ext = hi[d] - lo[d];
+        const double u = ext > 0 ? (0.25 * g - lo[d]) / ext : 0.0;
+        const std::uint64_t b = std::uint64_t(std::min(std::max(u, 0.0), 1.0) * 2097151.0);
+        code |= spread_bits(b) << d;
+      }
+      key[i] = {code, std::uint32_t(i)};
+    }
+    std::sort(key.begin(), key.end());
+    std::vector<std::uint32_t> domain_to_compact(domain.size());
+    for (std::size_t i = 0; i < key.size(); ++i) domain_to_compact[key[i].second] = std::uint32_t(i);
+    domain_to_compact_.resize(iteration_to_domain.size());
+    for (std::size_t i = 0; i < iteration_to_domain.size(); ++i)
+      domain_to_compact_[i] = iteration_to_domain[i] == outside ? outside : domain_to_compact[iteration_to_domain[i]];
+    records.resize(domain.size());
+    cell_handles.resize(domain.size());
+    for (std::size_t i = 0; i < domain.size(); ++i) {
+      const Cell_handle c = domain[i];
+      const std::uint32_t ci = domain_to_compact[i];
+      cell_handles[ci] = c;
+      Record& r = records[ci];
+      for (int l = 0; l < 4; ++l) {
+        r.v[l] = std::int32_t(vertex_index_(c->vertex(l)));
+        const Cell_handle n = c->neighbor(l);
+        const std::uint32_t ni = index(n);
+        r.n[l] = ni == outside ? outside : (ni << 2) | std::uint32_t(n->index(c));
+      }
+    }
+  }
+
+  /// Whether the arrays are usable (false if the domain has 2^30 cells or more).
+  bool valid() const { return !domain_to_compact_.empty(); }
+  /// Index of a domain cell in `records`, or `outside`.
+  /// \param c a cell handle of the triangulation (or null)
+  std::uint32_t index(Cell_handle c) const {
+    if (c == Cell_handle() || domain_to_compact_.empty()) return outside;
+    const std::uint32_t i = cell_index_(c);
+    return i == Handle_index<Cell_handle>::none ? outside : domain_to_compact_[i];
+  }
+  /// Coordinates of vertex `k`.
+  /// \param k a vertex index of a record
+  const double* point(std::int32_t k) const { return &xyz[3 * std::size_t(k)]; }
+
+  std::vector<Record> records;              ///< domain cells in Morton order
+  std::vector<Cell_handle> cell_handles;    ///< handle of each record
+  std::vector<double> xyz;                  ///< vertex coordinates (NaN for vertices of no domain cell)
+  std::vector<Vertex_handle> vertex_handles; ///< handle of each vertex index
+  std::array<double, 3> lo{}, hi{};         ///< bounding box of the vertices of the domain cells
+
+private:
+  // Interleaves the 21 low bits of x with two zero bits each.
+  static std::uint64_t spread_bits(std::uint64_t x) {
+    x &= 0x1fffffULL;
+    x = (x | x << 32) & 0x1f00000000ffffULL;
+    x = (x | x << 16) & 0x1f0000ff0000ffULL;
+    x = (x | x << 8) & 0x100f00f00f00f00fULL;
+    x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
+    x = (x | x << 2) & 0x1249249249249249ULL;
+    return x;
+  }
+  Handle_index<Cell_handle> cell_index_;
+  Handle_index<Vertex_handle> vertex_index_;
+  std::vector<std::uint32_t> domain_to_compact_; // cell slot -> record index or outside
+};
+
+} // namespace internal
+} // namespace CGAL_ext
+
+#endif // CGAL_EXT_INTERNAL_WALK_CELL_ARRAY_3_H
