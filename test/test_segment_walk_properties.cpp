@@ -577,7 +577,7 @@ TEST_CASE("cell array of the walk: handle index and adjacency copy", "[segment_w
     CHECK(a.cell_handles[ci] == c);
     const auto& r = a.records[ci];
     for (int l = 0; l < 4; ++l) {
-      CHECK(a.vertex_handles[std::size_t(r.v[l])] == c->vertex(l));
+      CHECK(a.vertex_handle(r.v[l]) == c->vertex(l));
       const double* x = a.point(r.v[l]);
       CHECK((x[0] == c->vertex(l)->point().x() && x[1] == c->vertex(l)->point().y() && x[2] == c->vertex(l)->point().z()));
       const DT::Cell_handle n = c->neighbor(l);

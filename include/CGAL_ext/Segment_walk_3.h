@@ -384,7 +384,7 @@ private:
     const typename Cell_array::Record& rec = cells_->records[ci];
     int k = 0;
     for (int i = 0; i < 4; ++i)
-      if (mask & (1u << i)) r.vertices[k++] = cells_->vertex_handles[std::size_t(rec.v[i])];
+      if (mask & (1u << i)) r.vertices[k++] = cells_->vertex_handle(rec.v[i]);
     r.dimension = k - 1;
   }
 
@@ -665,8 +665,15 @@ private:
   // certified by a static error bound for the whole segment (E, Er, derived
   // like CGAL's static filters from bounds on the coordinate differences,
   // with a safety factor of about 2), else the exact predicate decides.
+  // The weights need no new products: entering a cell through facet
+  // (f0, f1, f2) with weights mu_f, the new vertex d and the signs
+  // v_i = pi(d, f_i) choose the exit facet, say (d, f_a, f_b), whose weights
+  // are |v_b| for f_a, |v_a| for f_b and, for d, the old weight of the vertex
+  // left behind (each the |pi| of the edge opposite the vertex). Each value
+  // is still within E of its exact counterpart.
   struct Vertex_data {
     double w[3], u[3], rho;
+    double mu; // weight of the vertex in the current facet crossing
   };
   struct Array_state {
     Vertex_data pool[4];
@@ -705,6 +712,10 @@ private:
     v.w[0] = a[0] - x.qx;
     v.w[1] = a[1] - x.qy;
     v.w[2] = a[2] - x.qz;
+    finish_vertex(x, a, v);
+  }
+  // u and rho from w.
+  static void finish_vertex(const Ctx& x, const double* a, Vertex_data& v) {
     v.u[0] = x.dy * v.w[2] - x.dz * v.w[1];
     v.u[1] = x.dz * v.w[0] - x.dx * v.w[2];
     v.u[2] = x.dx * v.w[1] - x.dy * v.w[0];
@@ -712,7 +723,7 @@ private:
   }
   // det[D, a - q, b - q] in double.
   static double pi(const Vertex_data& a, const Vertex_data& b) { return a.u[0] * b.w[0] + a.u[1] * b.w[1] + a.u[2] * b.w[2]; }
-  const Point& array_point(std::int32_t k) const { return cells_->vertex_handles[std::size_t(k)]->point(); }
+  const Point& array_point(std::int32_t k) const { return cells_->vertex_handle(k)->point(); }
   // Sign of orientation(q, p, a, b), given its value v in double.
   CGAL::Orientation side(const Ctx& x, double v, std::int32_t a, std::int32_t b) const {
     if (v > x.E) return CGAL::POSITIVE;
@@ -748,7 +759,13 @@ private:
     int k = -1;
     for (int i = 0; i < 4 && k < 0; ++i) {
       const std::array<int, 3>& g = internal::walk_inner_facet(i);
-      if (-pi(P[g[1]], P[g[2]]) > x.E && -pi(P[g[2]], P[g[0]]) > x.E && -pi(P[g[0]], P[g[1]]) > x.E) k = i;
+      const double m0 = -pi(P[g[1]], P[g[2]]), m1 = -pi(P[g[2]], P[g[0]]), m2 = -pi(P[g[0]], P[g[1]]);
+      if (m0 > x.E && m1 > x.E && m2 > x.E) {
+        k = i;
+        st.pool[g[0]].mu = m0;
+        st.pool[g[1]].mu = m1;
+        st.pool[g[2]].mu = m2;
+      }
     }
     if (k < 0) return false;
     nx = array_loop(x, st, ci, k, true, 0.0, sink);
@@ -763,6 +780,13 @@ private:
     for (int l = 0; l < 4; ++l) {
       if (l != j) load_vertex(x, r.v[l], st.pool[l]);
     }
+    // Weights of the entry crossing (the cell on the positive side of the
+    // inner facet, entered from its negative side: the pi are >= 0).
+    const std::array<int, 3>& f = internal::walk_inner_facet(j);
+    Vertex_data* P = st.pool;
+    P[f[0]].mu = std::fabs(pi(P[f[1]], P[f[2]]));
+    P[f[1]].mu = std::fabs(pi(P[f[2]], P[f[0]]));
+    P[f[2]].mu = std::fabs(pi(P[f[0]], P[f[1]]));
     return array_loop(x, st, ci, j, false, t_in, sink);
   }
 
@@ -778,41 +802,58 @@ private:
       if (!have_exit) {
         const std::array<int, 3>& f = internal::walk_inner_facet(j);
         Vertex_data& d = st.at(j);
-        load_vertex(x, r->v[j], d);
-        // The segment enters through facet (a, b, c) from its negative side;
-        // the plane (q, p, d) separates its vertices. With the three signs
-        // certified, the exit is chosen without a branch (the choice is
-        // random for the branch predictor); otherwise exact signs decide.
-        const double va = pi(d, st.at(f[0])), vb = pi(d, st.at(f[1])), vc = pi(d, st.at(f[2]));
-        if (std::min(std::fabs(va), std::min(std::fabs(vb), std::fabs(vc))) > x.E) {
-          // a > 0: b < 0 -> f2, b > 0 -> f0; a < 0: c > 0 -> f1, c < 0 -> f0
-          const unsigned code = unsigned(va > 0) | unsigned(vb > 0) << 1 | unsigned(vc > 0) << 2;
-          k = f[(0x01210020u >> (4 * code)) & 3u];
+        const Vertex_data& A = st.at(f[0]);
+        const Vertex_data& B = st.at(f[1]);
+        const Vertex_data& C = st.at(f[2]);
+        const double* xyz = cells_->point(r->v[j]);
+        d.w[0] = xyz[0] - x.qx;
+        d.w[1] = xyz[1] - x.qy;
+        d.w[2] = xyz[2] - x.qz;
+        // v_i = pi(d, f_i) = -pi(f_i, d): the u of the entry vertices are
+        // known, so the cross product of d is off the critical path.
+        const double v[3] = {-pi(A, d), -pi(B, d), -pi(C, d)};
+        finish_vertex(x, xyz, d);
+        // The segment enters through facet (f0, f1, f2) from its negative
+        // side; the plane (q, p, d) separates its vertices. With the three
+        // signs certified, the exit is chosen without a branch (the choice
+        // is random for the branch predictor); otherwise exact signs decide.
+        int e = -1; // position in f of the vertex left behind
+        if (std::min(std::fabs(v[0]), std::min(std::fabs(v[1]), std::fabs(v[2]))) > x.E) {
+          // v0 > 0: v1 < 0 -> f2, v1 > 0 -> f0; v0 < 0: v2 > 0 -> f1, v2 < 0 -> f0
+          const unsigned code = unsigned(v[0] > 0) | unsigned(v[1] > 0) << 1 | unsigned(v[2] > 0) << 2;
+          e = int((0x01210020u >> (4 * code)) & 3u);
         } else {
-          k = -1;
-          const CGAL::Orientation sa = side(x, va, r->v[j], r->v[f[0]]);
+          const CGAL::Orientation sa = side(x, v[0], r->v[j], r->v[f[0]]);
           if (sa == CGAL::POSITIVE) {
-            const CGAL::Orientation sb = side(x, vb, r->v[j], r->v[f[1]]);
-            if (sb == CGAL::NEGATIVE) k = f[2];
-            else if (sb == CGAL::POSITIVE) k = f[0];
+            const CGAL::Orientation sb = side(x, v[1], r->v[j], r->v[f[1]]);
+            if (sb == CGAL::NEGATIVE) e = 2;
+            else if (sb == CGAL::POSITIVE) e = 0;
           } else if (sa == CGAL::NEGATIVE) {
-            const CGAL::Orientation sc = side(x, vc, r->v[j], r->v[f[2]]);
-            if (sc == CGAL::POSITIVE) k = f[1];
-            else if (sc == CGAL::NEGATIVE) k = f[0];
+            const CGAL::Orientation sc = side(x, v[2], r->v[j], r->v[f[2]]);
+            if (sc == CGAL::POSITIVE) e = 1;
+            else if (sc == CGAL::NEGATIVE) e = 0;
           }
+          if (e < 0) return traverse_cell(x, cells_->cell_handles[ci], t_in, sink); // through an edge or a vertex
         }
-        if (k < 0) return traverse_cell(x, cells_->cell_handles[ci], t_in, sink); // through an edge or a vertex
+        // Selections by index arithmetic: compilers turn conditional
+        // expressions here into branches, which the random exit mispredicts.
+        k = f[e];
+        const int ia = int(e == 0), ib = 2 - int(e == 2); // positions of the two vertices kept
+        const int pos[3] = {st.slot(f[0]), st.slot(f[1]), st.slot(f[2])};
+        d.mu = st.pool[pos[e]].mu;
+        st.pool[pos[ia]].mu = std::fabs(v[ib]);
+        st.pool[pos[ib]].mu = std::fabs(v[ia]);
       }
       have_exit = false;
       // Exit facet (g0, g1, g2), the cell on its positive side.
       const std::array<int, 3>& g = internal::walk_inner_facet(k);
       const Vertex_data &a = st.at(g[0]), &b = st.at(g[1]), &c = st.at(g[2]);
-      const double m0 = -pi(b, c), m1 = -pi(c, a), m2 = -pi(a, b);
+      const double m0 = a.mu, m1 = b.mu, m2 = c.mu;
       const double G = m0 * a.rho + m1 * b.rho + m2 * c.rho;
       // |G~ - G| <= sum E |rho~| + (|mu~| + E) Er + 3.5 u |mu~ rho~| (see above), plus a floor for underflow.
       const double err = 1.01 * (x.E * (std::fabs(a.rho) + std::fabs(b.rho) + std::fabs(c.rho)) +
-                                 x.Er * (std::fabs(m0) + std::fabs(m1) + std::fabs(m2) + 3 * x.E) +
-                                 4e-16 * (std::fabs(m0 * a.rho) + std::fabs(m1 * b.rho) + std::fabs(m2 * c.rho))) +
+                                 x.Er * (m0 + m1 + m2 + 3 * x.E) +
+                                 4e-16 * (m0 * std::fabs(a.rho) + m1 * std::fabs(b.rho) + m2 * std::fabs(c.rho))) +
                          1e-300;
       int op = G > err ? 1 : G < -err ? -1 : 2;
       if (op == 2) op = int(orient4(array_point(r->v[g[0]]), array_point(r->v[g[1]]), array_point(r->v[g[2]]), x.p));
@@ -832,19 +873,21 @@ private:
       const std::uint32_t ni = link >> 2;
       const int m = int(link & 3u);
       const typename Cell_array::Record* rn = &recs[ni];
+      // (With masks, not conditional expressions, for the same reason.)
       unsigned slots = 0;
       for (int i = 0; i < 4; ++i) {
         const std::int32_t id = rn->v[i];
         unsigned sl = 0;
-        for (int l = 0; l < 4; ++l) sl |= r->v[l] == id ? unsigned(st.slot(l)) : 0u;
-        if (i == m) sl = unsigned(st.slot(k)); // the new vertex takes the entry left behind
+        for (int l = 0; l < 4; ++l) sl |= (0u - unsigned(r->v[l] == id)) & unsigned(st.slot(l));
+        const unsigned is_new = 0u - unsigned(i == m); // the new vertex takes the entry left behind
+        sl = (sl & ~is_new) | (unsigned(st.slot(k)) & is_new);
         slots |= sl << (2 * i);
       }
       st.slots = slots;
 #if defined(__GNUC__)
-      // Start loading the three possible next records while this one is processed.
-      for (int i = 0; i < 4; ++i)
-        if (i != m && rn->n[i] != Cell_array::outside) __builtin_prefetch(&recs[rn->n[i] >> 2]);
+      // Start loading the possible next records while this one is processed
+      // (all four, without a branch: the one back is in cache anyway).
+      for (int i = 0; i < 4; ++i) __builtin_prefetch(&recs[rn->n[i] == Cell_array::outside ? ni : rn->n[i] >> 2]);
 #endif
       r = rn;
       ci = ni;

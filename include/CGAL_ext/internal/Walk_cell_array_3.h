@@ -104,10 +104,13 @@ private:
 /// The domain cells of a 3D triangulation with double coordinates, copied
 /// into flat arrays for the segment walk. Each cell keeps the local vertex
 /// and neighbour numbering of the triangulation, so that local indices and
-/// facet masks mean the same in both.
+/// facet masks mean the same in both. Cells and vertices are in Morton
+/// order (of centroids and points): cells met one after the other by a walk
+/// then share cache lines and pages far more often than in allocation order.
 ///
-/// Memory: 32 bytes per domain cell for the record, 8 for its handle, 4 per
-/// cell slot of the triangulation for the index table, 32 per vertex slot.
+/// Memory: 32 bytes per domain cell for the record and 8 for its handle, 32
+/// per vertex of a domain cell, 4 per cell slot of the triangulation for the
+/// look-up table.
 ///
 /// \tparam Tr a CGAL `Triangulation_3` whose points have double coordinates
 template <class Tr>
@@ -122,8 +125,13 @@ public:
   /// it as `(cell index << 2) | (index of this cell in the neighbour)`, or
   /// `outside` if the neighbour is not a domain cell.
   struct alignas(32) Record {
-    std::int32_t v[4]; ///< vertex indices (into `xyz` / `vertex_handles`)
+    std::int32_t v[4]; ///< vertex indices (into `vertices`)
     std::uint32_t n[4]; ///< neighbour links
+  };
+  /// One vertex: coordinates and handle, on the same cache line.
+  struct alignas(32) Vertex_record {
+    double xyz[3]; ///< coordinates
+    Vertex_handle handle; ///< the vertex
   };
   /// Link to a cell that is not in the domain; also "no cell".
   static constexpr std::uint32_t outside = std::numeric_limits<std::uint32_t>::max();
@@ -134,73 +142,82 @@ public:
   /// \param in_domain the domain predicate
   template <class Domain_predicate>
   Walk_cell_array_3(const Tr& tr, const Domain_predicate& in_domain) {
-    // Vertices in the order of the triangulation (spatially sorted on insertion).
-    for (auto v = tr.tds().vertices_begin(); v != tr.tds().vertices_end(); ++v) vertex_index_.push_back(v);
-    vertex_index_.finish();
-    const std::uint32_t nv = vertex_index_.size();
-    vertex_handles.resize(nv);
-    xyz.assign(3 * std::size_t(nv), std::numeric_limits<double>::quiet_NaN());
-    // Domain cells, in iteration order first.
+    // Domain cells, and the slot tables of cells and vertices.
     std::vector<Cell_handle> domain;
     for (auto c = tr.tds().cells_begin(); c != tr.tds().cells_end(); ++c) cell_index_.push_back(c);
     cell_index_.finish();
-    std::vector<std::uint32_t> iteration_to_domain(cell_index_.size(), outside); // by slot
+    std::vector<std::uint32_t> slot_to_domain(cell_index_.size(), outside);
     for (auto c = tr.tds().cells_begin(); c != tr.tds().cells_end(); ++c) {
       if (tr.is_infinite(c) || !in_domain(Cell_handle(c))) continue;
-      iteration_to_domain[cell_index_(c)] = std::uint32_t(domain.size());
+      slot_to_domain[cell_index_(c)] = std::uint32_t(domain.size());
       domain.push_back(c);
     }
-    if (domain.size() >= (std::size_t(1) << 30)) { // links keep 30 bits for the index
-      domain_to_compact_.clear();
-      return;
-    }
+    if (domain.size() >= (std::size_t(1) << 30)) return; // links keep 30 bits for the index; not valid()
+    Handle_index<Vertex_handle> vertex_slots;
+    for (auto v = tr.tds().vertices_begin(); v != tr.tds().vertices_end(); ++v) vertex_slots.push_back(v);
+    vertex_slots.finish();
+
+    // Vertices of domain cells, then their Morton order.
+    std::vector<std::uint32_t> vertex_id(vertex_slots.size(), outside);
+    std::vector<Vertex_handle> used;
     for (int d = 0; d < 3; ++d) {
       lo[d] = std::numeric_limits<double>::infinity();
       hi[d] = -std::numeric_limits<double>::infinity();
     }
     for (Cell_handle c : domain)
       for (int i = 0; i < 4; ++i) {
-        const Vertex_handle v = c->vertex(i);
-        const std::uint32_t k = vertex_index_(v);
-        if (vertex_handles[k] != Vertex_handle()) continue;
-        vertex_handles[k] = v;
+        std::uint32_t& id = vertex_id[vertex_slots(c->vertex(i))];
+        if (id != outside) continue;
+        id = std::uint32_t(used.size());
+        used.push_back(c->vertex(i));
         for (int d = 0; d < 3; ++d) {
-          const double x = CGAL::to_double(v->point()[d]);
-          xyz[3 * std::size_t(k) + d] = x;
+          const double x = CGAL::to_double(c->vertex(i)->point()[d]);
           lo[d] = std::min(lo[d], x);
           hi[d] = std::max(hi[d], x);
         }
       }
-    // Morton order of the centroids: cells met one after the other by a walk
-    // share cache lines and pages far more often than in allocation order.
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> key(domain.size());
-    for (std::size_t i = 0; i < domain.size(); ++i) {
-      std::uint64_t code = 0;
-      for (int d = 0; d < 3; ++d) {
-        double g = 0;
-        for (int l = 0; l < 4; ++l) g += xyz[3 * std::size_t(vertex_index_(domain[i]->vertex(l))) + d];
-        const double ext = hi[d] - lo[d];
-        const double u = ext > 0 ? (0.25 * g - lo[d]) / ext : 0.0;
-        const std::uint64_t b = std::uint64_t(std::min(std::max(u, 0.0), 1.0) * 2097151.0);
-        code |= spread_bits(b) << d;
-      }
-      key[i] = {code, std::uint32_t(i)};
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> key(used.size());
+    for (std::size_t i = 0; i < used.size(); ++i) {
+      const auto& a = used[i]->point();
+      const double g[3] = {CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z())};
+      key[i] = {morton(g), std::uint32_t(i)};
     }
     std::sort(key.begin(), key.end());
-    std::vector<std::uint32_t> domain_to_compact(domain.size());
-    for (std::size_t i = 0; i < key.size(); ++i) domain_to_compact[key[i].second] = std::uint32_t(i);
-    domain_to_compact_.resize(iteration_to_domain.size());
-    for (std::size_t i = 0; i < iteration_to_domain.size(); ++i)
-      domain_to_compact_[i] = iteration_to_domain[i] == outside ? outside : domain_to_compact[iteration_to_domain[i]];
+    std::vector<std::uint32_t> order(used.size());
+    vertices.resize(used.size());
+    for (std::size_t i = 0; i < key.size(); ++i) {
+      order[key[i].second] = std::uint32_t(i);
+      Vertex_record& r = vertices[i];
+      r.handle = used[key[i].second];
+      for (int d = 0; d < 3; ++d) r.xyz[d] = CGAL::to_double(r.handle->point()[d]);
+    }
+    for (std::uint32_t& id : vertex_id)
+      if (id != outside) id = order[id];
+    auto vid = [&](Vertex_handle v) { return std::int32_t(vertex_id[vertex_slots(v)]); };
+
+    // Cells in Morton order of their centroids.
+    key.resize(domain.size());
+    for (std::size_t i = 0; i < domain.size(); ++i) {
+      double g[3] = {0, 0, 0};
+      for (int l = 0; l < 4; ++l)
+        for (int d = 0; d < 3; ++d) g[d] += 0.25 * vertices[std::size_t(vid(domain[i]->vertex(l)))].xyz[d];
+      key[i] = {morton(g), std::uint32_t(i)};
+    }
+    std::sort(key.begin(), key.end());
+    order.assign(domain.size(), 0);
+    for (std::size_t i = 0; i < key.size(); ++i) order[key[i].second] = std::uint32_t(i);
+    slot_to_record_.resize(slot_to_domain.size());
+    for (std::size_t i = 0; i < slot_to_domain.size(); ++i)
+      slot_to_record_[i] = slot_to_domain[i] == outside ? outside : order[slot_to_domain[i]];
     records.resize(domain.size());
     cell_handles.resize(domain.size());
     for (std::size_t i = 0; i < domain.size(); ++i) {
       const Cell_handle c = domain[i];
-      const std::uint32_t ci = domain_to_compact[i];
+      const std::uint32_t ci = order[i];
       cell_handles[ci] = c;
       Record& r = records[ci];
       for (int l = 0; l < 4; ++l) {
-        r.v[l] = std::int32_t(vertex_index_(c->vertex(l)));
+        r.v[l] = vid(c->vertex(l));
         const Cell_handle n = c->neighbor(l);
         const std::uint32_t ni = index(n);
         r.n[l] = ni == outside ? outside : (ni << 2) | std::uint32_t(n->index(c));
@@ -209,23 +226,25 @@ public:
   }
 
   /// Whether the arrays are usable (false if the domain has 2^30 cells or more).
-  bool valid() const { return !domain_to_compact_.empty(); }
+  bool valid() const { return !slot_to_record_.empty(); }
   /// Index of a domain cell in `records`, or `outside`.
   /// \param c a cell handle of the triangulation (or null)
   std::uint32_t index(Cell_handle c) const {
-    if (c == Cell_handle() || domain_to_compact_.empty()) return outside;
+    if (c == Cell_handle() || slot_to_record_.empty()) return outside;
     const std::uint32_t i = cell_index_(c);
-    return i == Handle_index<Cell_handle>::none ? outside : domain_to_compact_[i];
+    return i == Handle_index<Cell_handle>::none ? outside : slot_to_record_[i];
   }
   /// Coordinates of vertex `k`.
   /// \param k a vertex index of a record
-  const double* point(std::int32_t k) const { return &xyz[3 * std::size_t(k)]; }
+  const double* point(std::int32_t k) const { return vertices[std::size_t(k)].xyz; }
+  /// Handle of vertex `k`.
+  /// \param k a vertex index of a record
+  Vertex_handle vertex_handle(std::int32_t k) const { return vertices[std::size_t(k)].handle; }
 
-  std::vector<Record> records;              ///< domain cells in Morton order
-  std::vector<Cell_handle> cell_handles;    ///< handle of each record
-  std::vector<double> xyz;                  ///< vertex coordinates (NaN for vertices of no domain cell)
-  std::vector<Vertex_handle> vertex_handles; ///< handle of each vertex index
-  std::array<double, 3> lo{}, hi{};         ///< bounding box of the vertices of the domain cells
+  std::vector<Record> records;          ///< domain cells in Morton order
+  std::vector<Cell_handle> cell_handles; ///< handle of each record
+  std::vector<Vertex_record> vertices;  ///< vertices of the domain cells in Morton order
+  std::array<double, 3> lo{}, hi{};     ///< bounding box of `vertices`
 
 private:
   // Interleaves the 21 low bits of x with two zero bits each.
@@ -238,9 +257,18 @@ private:
     x = (x | x << 2) & 0x1249249249249249ULL;
     return x;
   }
+  // Morton code of a point of the bounding box (21 bits per axis).
+  std::uint64_t morton(const double* g) const {
+    std::uint64_t code = 0;
+    for (int d = 0; d < 3; ++d) {
+      const double ext = hi[d] - lo[d];
+      const double u = ext > 0 ? (g[d] - lo[d]) / ext : 0.0;
+      code |= spread_bits(std::uint64_t(std::min(std::max(u, 0.0), 1.0) * 2097151.0)) << d;
+    }
+    return code;
+  }
   Handle_index<Cell_handle> cell_index_;
-  Handle_index<Vertex_handle> vertex_index_;
-  std::vector<std::uint32_t> domain_to_compact_; // cell slot -> record index or outside
+  std::vector<std::uint32_t> slot_to_record_; // cell slot -> record index or outside
 };
 
 } // namespace internal
