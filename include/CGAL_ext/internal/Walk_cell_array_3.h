@@ -77,12 +77,20 @@ public:
   /// \param h the handle
   std::uint32_t operator()(Handle h) const {
     const std::uintptr_t a = address(h);
-    auto it = std::upper_bound(runs_.begin(), runs_.end(), a, [](std::uintptr_t x, const Run& r) { return x < r.begin; });
-    if (it == runs_.begin()) return none;
-    --it;
-    const std::uintptr_t off = a - it->begin;
-    if (off % stride != 0 || off / stride >= it->count) return none;
-    return it->first + std::uint32_t(off / stride);
+    if (runs_.empty() || a < runs_.front().begin) return none;
+    // Last run that begins at or before a, by a binary search whose steps
+    // compile to conditional moves (the branches of std::upper_bound would
+    // be mispredicted half the time).
+    const Run* base = runs_.data();
+    std::size_t n = runs_.size();
+    while (n > 1) {
+      const std::size_t half = n / 2;
+      base = base[half].begin <= a ? base + half : base;
+      n -= half;
+    }
+    const std::uintptr_t off = a - base->begin;
+    if (off % stride != 0 || off / stride >= base->count) return none;
+    return base->first + std::uint32_t(off / stride);
   }
   /// Number of slots (elements and gaps), after `finish()`.
   std::uint32_t size() const { return size_; }
@@ -193,14 +201,16 @@ public:
     }
     for (std::uint32_t& id : vertex_id)
       if (id != outside) id = order[id];
-    auto vid = [&](Vertex_handle v) { return std::int32_t(vertex_id[vertex_slots(v)]); };
+    std::vector<std::array<std::int32_t, 4>> cell_vertices(domain.size());
+    for (std::size_t i = 0; i < domain.size(); ++i)
+      for (int l = 0; l < 4; ++l) cell_vertices[i][l] = std::int32_t(vertex_id[vertex_slots(domain[i]->vertex(l))]);
 
     // Cells in Morton order of their centroids.
     key.resize(domain.size());
     for (std::size_t i = 0; i < domain.size(); ++i) {
       double g[3] = {0, 0, 0};
       for (int l = 0; l < 4; ++l)
-        for (int d = 0; d < 3; ++d) g[d] += 0.25 * vertices[std::size_t(vid(domain[i]->vertex(l)))].xyz[d];
+        for (int d = 0; d < 3; ++d) g[d] += 0.25 * vertices[std::size_t(cell_vertices[i][l])].xyz[d];
       key[i] = {morton(g), std::uint32_t(i)};
     }
     std::sort(key.begin(), key.end());
@@ -217,7 +227,7 @@ public:
       cell_handles[ci] = c;
       Record& r = records[ci];
       for (int l = 0; l < 4; ++l) {
-        r.v[l] = vid(c->vertex(l));
+        r.v[l] = cell_vertices[i][l];
         const Cell_handle n = c->neighbor(l);
         const std::uint32_t ni = index(n);
         r.n[l] = ni == outside ? outside : (ni << 2) | std::uint32_t(n->index(c));
