@@ -109,11 +109,20 @@ inline int walk_popcount(unsigned m) { return int(m & 1u) + int((m >> 1) & 1u) +
 /// decisions are those of the exact predicate; define
 /// `CGAL_EXT_WALK_NO_STATIC_FILTER` to always call the traits' predicate.
 ///
-/// A generic step costs two orientation predicates (the classic straight
-/// walk) plus one to test whether \f$p\f$ was reached; degenerate
-/// configurations (the segment through a vertex, along an edge, in a facet
-/// plane) are detected when a predicate returns zero and handled by an exact
-/// general step over the star of the current simplex.
+/// With double coordinates, the walker keeps a compact copy of the domain
+/// cells (`internal::Walk_cell_array_3`: 32-byte cell and vertex records in
+/// Morton order, built in the constructor; about 44 bytes per domain cell
+/// and 32 per vertex). A generic step there costs three dot products: each
+/// vertex, once loaded, is turned into Pluecker-style data relative to the
+/// segment line, and the signs of the three planes through the line and the
+/// new vertex choose the exit facet; whether \f$p\f$ was reached, and the
+/// exit parameter, come from the barycentric weights of the crossing point,
+/// carried from cell to cell. These signs are certified by static error
+/// bounds computed once per segment; an uncertain one is decided by the
+/// traits' exact predicate. Degenerate configurations (the segment through
+/// a vertex, along an edge, in a facet plane) are detected when a predicate
+/// returns zero and handled by an exact general step over the star of the
+/// current simplex.
 ///
 /// Infinite cells are never used geometrically, so the walk is valid on a
 /// `Tet_mesh_triangulation_3` of a non-convex domain, with several
