@@ -172,9 +172,13 @@ public:
       lo[d] = std::numeric_limits<double>::infinity();
       hi[d] = -std::numeric_limits<double>::infinity();
     }
-    for (Cell_handle c : domain)
+    std::vector<std::array<std::int32_t, 4>> cell_vertices(domain.size()); // vertex slots, then ids
+    for (std::size_t ci = 0; ci < domain.size(); ++ci)
       for (int i = 0; i < 4; ++i) {
-        std::uint32_t& id = vertex_id[vertex_slots(c->vertex(i))];
+        const Cell_handle c = domain[ci];
+        const std::uint32_t slot = vertex_slots(c->vertex(i));
+        cell_vertices[ci][i] = std::int32_t(slot);
+        std::uint32_t& id = vertex_id[slot];
         if (id != outside) continue;
         id = std::uint32_t(used.size());
         used.push_back(c->vertex(i));
@@ -201,9 +205,8 @@ public:
     }
     for (std::uint32_t& id : vertex_id)
       if (id != outside) id = order[id];
-    std::vector<std::array<std::int32_t, 4>> cell_vertices(domain.size());
-    for (std::size_t i = 0; i < domain.size(); ++i)
-      for (int l = 0; l < 4; ++l) cell_vertices[i][l] = std::int32_t(vertex_id[vertex_slots(domain[i]->vertex(l))]);
+    for (auto& cv : cell_vertices)
+      for (std::int32_t& k : cv) k = std::int32_t(vertex_id[std::size_t(k)]);
 
     // Cells in Morton order of their centroids.
     key.resize(domain.size());
@@ -228,11 +231,25 @@ public:
       Record& r = records[ci];
       for (int l = 0; l < 4; ++l) {
         r.v[l] = cell_vertices[i][l];
-        const Cell_handle n = c->neighbor(l);
-        const std::uint32_t ni = index(n);
-        r.n[l] = ni == outside ? outside : (ni << 2) | std::uint32_t(n->index(c));
+        r.n[l] = index(c->neighbor(l));
       }
     }
+    // Mirror indices from the records of the neighbours (in Morton order,
+    // mostly in cache) rather than from the triangulation's cells: first
+    // find them all with the plain indices, then pack the links.
+    std::vector<std::uint8_t> mirror(4 * records.size(), 0);
+    for (std::size_t ci = 0; ci < records.size(); ++ci)
+      for (int l = 0; l < 4; ++l) {
+        const std::uint32_t ni = records[ci].n[l];
+        if (ni == outside) continue;
+        const Record& o = records[ni];
+        std::uint8_t m = 0;
+        while (m < 3 && o.n[m] != ci) ++m;
+        mirror[4 * ci + std::size_t(l)] = m;
+      }
+    for (std::size_t ci = 0; ci < records.size(); ++ci)
+      for (int l = 0; l < 4; ++l)
+        if (records[ci].n[l] != outside) records[ci].n[l] = (records[ci].n[l] << 2) | mirror[4 * ci + std::size_t(l)];
   }
 
   /// Whether the arrays are usable (false if the domain has 2^30 cells or more).
