@@ -66,7 +66,8 @@ inline const std::array<int, 3>& walk_inner_facet(int i) { return walk_inner_fac
 // Output iterators that are std::back_inserter of a std::vector<Piece> get
 // the pieces built in place: building a piece in a temporary and copying it
 // makes the wide loads of the copy wait for the narrow stores that built it
-// (a store-forwarding stall, a fifth of the time of the fast walk).
+// (a store-forwarding stall: a fifth of the samples of the full walk in a
+// profile before this).
 template <class It, class Piece>
 struct Is_vector_back_inserter : std::false_type {};
 template <class Piece, class Alloc>
@@ -410,6 +411,9 @@ private:
 
   template <bool Full, class OutputIterator>
   OutputIterator run(const Point& q, const Point& p, OutputIterator out, Cell_handle hint) const {
+    // The record of the hint first: its look-up is a cache miss on random
+    // queries, which overlaps with the checks below.
+    const std::uint32_t ci = cells_ ? cells_->index(hint) : Cell_array::outside;
     check_finite(q, Full ? "operator()" : "fast");
     check_finite(p, Full ? "operator()" : "fast");
     Sink<Full, OutputIterator> sink{this, out};
@@ -417,7 +421,6 @@ private:
       // Common case first: q strictly inside the hint cell, found in the cell array.
       Ctx x(q, p, max_steps_);
       if (prepare_fast(x)) {
-        const std::uint32_t ci = cells_->index(hint);
         Next nx;
         if (ci != Cell_array::outside && array_start(x, hint, ci, nx, sink)) {
           finish(x, nx, sink);
@@ -664,8 +667,8 @@ private:
   // into Pluecker-style data relative to the segment line L = q + t D:
   //   w = v - q,  u = D x w,  rho = (v - p) . D.
   // Then pi(a, b) = u_a . w_b = det[D, a - q, b - q] has the sign of
-  // orientation(q, p, a, b), so the exit facet costs one cross product per
-  // new vertex and two dot products. For a facet (g0, g1, g2) with the cell
+  // orientation(q, p, a, b), so the exit facet costs three dot products
+  // (and one cross product per new vertex, off the critical path). For a facet (g0, g1, g2) with the cell
   // on its positive side crossed outwards, mu_i = -pi(g_{i+1}, g_{i+2}) are
   // the barycentric weights of the crossing point X (S = sum mu_i > 0), and
   //   G = sum mu_i rho_i = |D|^2 det[g1 - g0, g2 - g0, p - g0]
