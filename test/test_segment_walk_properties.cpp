@@ -595,3 +595,37 @@ TEST_CASE("cell array of the walk: handle index and adjacency copy", "[segment_w
     if (dt.is_infinite(c)) CHECK(a.index(c) == a.outside);
   CHECK(a.index(DT::Cell_handle()) == a.outside);
 }
+
+TEST_CASE("segment walk: tiny segments keep their parameters", "[segment_walk]") {
+  // A Kuhn cube (six tets around the diagonal from (0,0,0) to (1,1,1)); a
+  // segment across the diagonal near the corner (0,0,0), at scales from 1e-3
+  // down to 1e-110: below 1e-50 the walk leaves its cell array (products of
+  // its step would underflow), and a parameter computed as n.(a - q) / n.D
+  // from a far vertex a would lose q's offset entirely. The facets around the diagonal and the cube's faces at that
+  // corner are planes through the origin, so scaling about it changes
+  // neither the simplices met nor their parameters.
+  const Mesh_tr tr = build(make_kuhn_grid(1, 1, 1, [](int, int, int) { return true; }));
+  const Mesh_walk walk(tr, Is_tet_mesh_domain_cell());
+  auto run = [&](double s, bool fast) {
+    const Mesh_tr::Point q(s * 11.0, s * 9.1, s * 10.35), p(s * 8.9, s * 10.8, s * 9.75);
+    std::vector<Segment_walk_piece_3<Mesh_tr>> w;
+    const Mesh_tr::Cell_handle hint = walk.locate(q).cell;
+    if (fast) walk.fast(q, p, std::back_inserter(w), hint);
+    else walk(q, p, std::back_inserter(w), hint);
+    return w;
+  };
+  for (bool fast : {true, false}) {
+    const auto ref = run(1e-3, fast);
+    REQUIRE(ref.size() >= (fast ? 3u : 5u)); // at least three tets
+    for (double s : {1e-30, 1e-45, 1e-52, 1e-80, 1e-110}) {
+      const auto w = run(s, fast);
+      INFO("scale " << s << (fast ? ", fast" : ", full"));
+      REQUIRE(w.size() == ref.size());
+      for (std::size_t i = 0; i < w.size(); ++i) {
+        CHECK(w[i].dimension == ref[i].dimension);
+        CHECK(w[i].t_in == Approx(ref[i].t_in).margin(1e-9));
+        CHECK(w[i].t_out == Approx(ref[i].t_out).margin(1e-9));
+      }
+    }
+  }
+}

@@ -480,7 +480,29 @@ private:
     const double wx_ = wy * ez - wz * ey, wy_ = wz * ex - wx * ez, wz_ = wx * ey - wy * ex;
     return (wx_ * cx + wy_ * cy + wz_ * cz) / (cx * cx + cy * cy + cz * cz);
   }
+  // Where the line crosses the plane (a, b, c): X = sum lambda_v v with
+  // lambda_a proportional to det[D, b - q, c - q] (and cyclically), so
+  // t = sum lambda_v (v - q).D / |D|^2. Unlike n.(a - q) / n.D, this keeps
+  // its precision for segments much shorter than the facet: the weight of a
+  // far vertex is then tiny instead of its coordinates swamping q's.
   double t_plane(const Ctx& x, const Point& a, const Point& b, const Point& c) const {
+    double w[3][3];
+    diff(a, x.qx, x.qy, x.qz, w[0]);
+    diff(b, x.qx, x.qy, x.qz, w[1]);
+    diff(c, x.qx, x.qy, x.qz, w[2]);
+    double lam[3], tau[3];
+    for (int i = 0; i < 3; ++i) {
+      const double* u = w[(i + 1) % 3];
+      const double* v = w[(i + 2) % 3];
+      lam[i] = x.dx * (u[1] * v[2] - u[2] * v[1]) + x.dy * (u[2] * v[0] - u[0] * v[2]) + x.dz * (u[0] * v[1] - u[1] * v[0]);
+      tau[i] = (w[i][0] * x.dx + w[i][1] * x.dy + w[i][2] * x.dz) / x.dd;
+    }
+    const double sum = lam[0] + lam[1] + lam[2];
+    if (std::isnormal(sum) && std::isfinite(tau[0] + tau[1] + tau[2]))
+      return (lam[0] * tau[0] + lam[1] * tau[1] + lam[2] * tau[2]) / sum;
+    return t_plane_normal(x, a, b, c);
+  }
+  double t_plane_normal(const Ctx& x, const Point& a, const Point& b, const Point& c) const {
     const double ax = CGAL::to_double(a.x()), ay = CGAL::to_double(a.y()), az = CGAL::to_double(a.z());
     const double ux = CGAL::to_double(b.x()) - ax, uy = CGAL::to_double(b.y()) - ay, uz = CGAL::to_double(b.z()) - az;
     const double vx = CGAL::to_double(c.x()) - ax, vy = CGAL::to_double(c.y()) - ay, vz = CGAL::to_double(c.z()) - az;
@@ -648,9 +670,7 @@ private:
         if (op == 0) sink(Simplex{c, 15u & ~(1u << k)}, 1.0, 1.0, true);
         return Next();
       }
-      const double nx = ba[1] * ea[2] - ba[2] * ea[1], ny = ba[2] * ea[0] - ba[0] * ea[2], nz = ba[0] * ea[1] - ba[1] * ea[0];
-      const double t_out =
-          clamp_t((nx * (ax - x.qx) + ny * (ay - x.qy) + nz * (az - x.qz)) / (nx * x.dx + ny * x.dy + nz * x.dz), t_in);
+      const double t_out = clamp_t(t_plane(x, a, b, e), t_in);
       const Simplex fct{c, 15u & ~(1u << k)};
       sink(Simplex{c, 15u}, t_in, t_out, false);
       const Cell_handle n = c->neighbor(k);
@@ -711,6 +731,10 @@ private:
       if (!(m[i] >= 1e-50 && m[i] <= 1e50 && mp[i] <= 1e50)) return false;
       mp[i] = std::max(mp[i], 1e-50);
     }
+    // t = 1 + G / (S |D|^2) has S |D|^2 of the order of |D|^3 |v - q|^2: a
+    // segment shorter than 1e-50 is left to the general path, whose
+    // parameters do not underflow.
+    if (!(x.dd >= 1e-100)) return false;
     // det of three rows of rounded differences: 6 terms of at most m0 m1 m2,
     // about 8 roundings each: < 5.4e-15 m0 m1 m2. A dot of a rounded
     // difference with D: < 5.1 u sum mp_i |d_i|.
@@ -874,7 +898,10 @@ private:
         if (op == 0) sink(ci, 15u & ~(1u << k), 1.0, 1.0, true);
         return Next();
       }
-      const double t_out = clamp_t(1.0 + G / ((m0 + m1 + m2) * x.dd), t_in);
+      // (A denominator that underflows on a tiny cell: the plane formula.)
+      const double den = (m0 + m1 + m2) * x.dd;
+      const double t_out = std::isnormal(den) ? clamp_t(1.0 + G / den, t_in)
+                                              : t_of(x, Simplex{cells_->cell_handles[ci], 15u & ~(1u << k)}, t_in);
       sink(ci, 15u, t_in, t_out, false);
       const std::uint32_t link = r->n[k];
       if (link == Cell_array::outside)

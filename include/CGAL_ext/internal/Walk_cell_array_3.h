@@ -252,8 +252,8 @@ public:
         if (records[ci].n[l] != outside) records[ci].n[l] = (records[ci].n[l] << 2) | mirror[4 * ci + std::size_t(l)];
   }
 
-  /// Whether the arrays are usable (false if the domain has 2^30 cells or more).
-  bool valid() const { return !slot_to_record_.empty(); }
+  /// Whether the arrays are usable (false if the domain is empty or has 2^30 cells or more).
+  bool valid() const { return !slot_to_record_.empty() && !records.empty(); }
   /// Index of a domain cell in `records`, or `outside`.
   /// \param c a cell handle of the triangulation (or null)
   std::uint32_t index(Cell_handle c) const {
