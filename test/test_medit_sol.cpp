@@ -5,6 +5,8 @@
 #include <CGAL_ext/IO/Medit_sol.h>
 #include <CGAL_ext/Input_error.h>
 
+#include "input_error_checks.h"
+
 #include <catch2/catch.hpp>
 
 #include <Eigen/Geometry>
@@ -46,20 +48,10 @@ std::string write_file(const std::string& name, const std::string& text) {
   return p.string();
 }
 
-// Reads and expects an Input_error; checks its file, line (0: not checked)
-// and element, and that the problem contains `words`.
+// Reads and expects an Input_error (see expect_input_error).
 void expect_error(const std::string& path, std::size_t expected_count, std::size_t line, const std::string& element,
                   const std::string& words) {
-  try {
-    read_medit_sol(path, expected_count);
-    FAIL("no exception for " << path);
-  } catch (const CGAL_ext::Input_error& e) {
-    INFO(e.what());
-    CHECK(e.file() == path);
-    if (line) CHECK(e.line() == line);
-    CHECK(e.element() == element);
-    CHECK(e.problem().find(words) != std::string::npos);
-  }
+  cgal_ext_test::expect_input_error([&] { read_medit_sol(path, expected_count); }, path, line, element, words);
 }
 
 const char* header = "MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n";

@@ -7,6 +7,7 @@
 #include <CGAL_ext/IO/Vtu_file.h>
 #include <CGAL_ext/Input_error.h>
 
+#include "input_error_checks.h"
 #include "vtu_test_reader.h"
 
 #include <catch2/catch.hpp>
@@ -179,20 +180,9 @@ void expect_invalid(const std::string& path, const std::function<void()>& write,
   CHECK(temporary_files_left() == 0);
 }
 
-// Expects read_fra(path) to throw an Input_error at `line` (0: not
-// checked) about `element`, whose problem contains `words`.
+// Expects read_fra(path) to throw an Input_error (see expect_input_error).
 void expect_fra_error(const std::string& path, std::size_t line, const std::string& element, const std::string& words) {
-  try {
-    read_fra(path);
-    FAIL("no exception for " << path);
-  } catch (const CGAL_ext::Input_error& e) {
-    INFO(e.what());
-    CHECK(e.file() == path);
-    if (line) CHECK(e.line() == line);
-    CHECK(e.element() == element);
-    CHECK(e.problem().find(words) != std::string::npos);
-    CHECK(std::string(e.what()).find(path + ":") == 0);
-  }
+  cgal_ext_test::expect_input_error([&] { read_fra(path); }, path, line, element, words);
 }
 
 } // namespace

@@ -1,0 +1,39 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// Shared by the tests of the file readers: the check that reading a bad file
+// throws one clear CGAL_ext::Input_error.
+#ifndef CGAL_EXT_TEST_INPUT_ERROR_CHECKS_H
+#define CGAL_EXT_TEST_INPUT_ERROR_CHECKS_H
+
+#include <CGAL_ext/Input_error.h>
+
+#include <catch2/catch.hpp>
+
+#include <cstddef>
+#include <string>
+
+namespace cgal_ext_test {
+
+/// Expects `read()` to throw an `Input_error` naming `path`, at `line`
+/// (0: not checked), about `element`, whose problem contains `words`, and
+/// whose message starts with "path:".
+template <class Read>
+void expect_input_error(Read read, const std::string& path, std::size_t line, const std::string& element,
+                        const std::string& words) {
+  try {
+    read();
+    FAIL("no exception for " << path);
+  } catch (const CGAL_ext::Input_error& e) {
+    INFO(e.what());
+    CHECK(e.file() == path);
+    if (line) CHECK(e.line() == line);
+    CHECK(e.element() == element);
+    CHECK(e.problem().find(words) != std::string::npos);
+    CHECK(std::string(e.what()).find(path + ":") == 0);
+  }
+}
+
+} // namespace cgal_ext_test
+
+#endif // CGAL_EXT_TEST_INPUT_ERROR_CHECKS_H
