@@ -417,23 +417,17 @@ private:
     check_finite(q, Full ? "operator()" : "fast");
     check_finite(p, Full ? "operator()" : "fast");
     Sink<Full, OutputIterator> sink{this, out};
-    if (cells_ && !(q == p)) {
-      // Common case first: q strictly inside the hint cell, found in the cell array.
-      Ctx x(q, p, max_steps_);
-      if (prepare_fast(x)) {
-        Next nx;
-        if (ci != Cell_array::outside && array_start(x, hint, ci, nx, sink)) {
-          finish(x, nx, sink);
-          return sink.out;
-        }
-      }
-    }
-    const Simplex start = locate_simplex(q, hint);
     if (q == p) {
-      *sink.out++ = make_piece(start, 0.0, 1.0);
+      *sink.out++ = make_piece(locate_simplex(q, hint), 0.0, 1.0);
       return sink.out;
     }
-    walk(q, p, start, sink);
+    Ctx x(q, p, max_steps_);
+    Next nx;
+    // Common case first: q strictly inside the hint cell, found in the cell
+    // array; otherwise exact location, then the walk from there.
+    if (!(prepare_fast(x) && ci != Cell_array::outside && array_start(x, hint, ci, nx, sink)))
+      nx = start_at(x, locate_simplex(q, hint), sink);
+    finish(x, nx, sink);
     return sink.out;
   }
 
@@ -532,15 +526,17 @@ private:
   void walk(const Point& q, const Point& p, Simplex start, S& sink) const {
     Ctx x(q, p, max_steps_);
     prepare_fast(x);
+    finish(x, start_at(x, start, sink), sink);
+  }
+  // The state at q, in the simplex start (or in a gap if start is invalid).
+  template <class S>
+  Next start_at(Ctx& x, const Simplex& start, S& sink) const {
+    if (!start.valid()) return gap(x, Simplex(), 0.0, sink);
     Next nx;
-    if (!start.valid()) {
-      nx = gap(x, Simplex(), 0.0, sink);
-    } else {
-      nx.done = false;
-      nx.s = start;
-      nx.t = 0.0;
-    }
-    finish(x, nx, sink);
+    nx.done = false;
+    nx.s = start;
+    nx.t = 0.0;
+    return nx;
   }
   template <class S>
   void finish(Ctx& x, Next nx, S& sink) const {

@@ -167,7 +167,7 @@ public:
 
     // Vertices of domain cells, then their Morton order.
     std::vector<std::uint32_t> vertex_id(vertex_slots.size(), outside);
-    std::vector<Vertex_handle> used;
+    std::vector<Vertex_record> used; // in the order first met
     for (int d = 0; d < 3; ++d) {
       lo[d] = std::numeric_limits<double>::infinity();
       hi[d] = -std::numeric_limits<double>::infinity();
@@ -181,27 +181,23 @@ public:
         std::uint32_t& id = vertex_id[slot];
         if (id != outside) continue;
         id = std::uint32_t(used.size());
-        used.push_back(c->vertex(i));
+        Vertex_record r;
+        r.handle = c->vertex(i);
         for (int d = 0; d < 3; ++d) {
-          const double x = CGAL::to_double(c->vertex(i)->point()[d]);
-          lo[d] = std::min(lo[d], x);
-          hi[d] = std::max(hi[d], x);
+          r.xyz[d] = CGAL::to_double(r.handle->point()[d]);
+          lo[d] = std::min(lo[d], r.xyz[d]);
+          hi[d] = std::max(hi[d], r.xyz[d]);
         }
+        used.push_back(r);
       }
     std::vector<std::pair<std::uint64_t, std::uint32_t>> key(used.size());
-    for (std::size_t i = 0; i < used.size(); ++i) {
-      const auto& a = used[i]->point();
-      const double g[3] = {CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z())};
-      key[i] = {morton(g), std::uint32_t(i)};
-    }
+    for (std::size_t i = 0; i < used.size(); ++i) key[i] = {morton(used[i].xyz), std::uint32_t(i)};
     std::sort(key.begin(), key.end());
     std::vector<std::uint32_t> order(used.size());
     vertices.resize(used.size());
     for (std::size_t i = 0; i < key.size(); ++i) {
       order[key[i].second] = std::uint32_t(i);
-      Vertex_record& r = vertices[i];
-      r.handle = used[key[i].second];
-      for (int d = 0; d < 3; ++d) r.xyz[d] = CGAL::to_double(r.handle->point()[d]);
+      vertices[i] = used[key[i].second];
     }
     for (std::uint32_t& id : vertex_id)
       if (id != outside) id = order[id];
