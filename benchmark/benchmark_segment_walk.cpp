@@ -5,22 +5,29 @@
 //
 // For three classes of random segments (short: half the mean vertex
 // spacing; medium: about 10 cells; long: across the cube), it measures in one
-// run the cells per second of Segment_walk_3::fast, of the full output
-// Segment_walk_3::operator(), and of Triangulation_3::segment_traverser_cell_handles,
+// run the cells per second of
+//  - Segment_walk_3::fast, one segment per call, pieces into a vector;
+//  - Segment_walk_3::fast_batch, all the segments in one call, pieces to a
+//    callback (the walks are interleaved, 8 at a time);
+//  - the same two for the full output (operator() and batch);
+//  - Triangulation_3::segment_traverser_cell_handles, one segment at a time,
+//    as CGAL offers it;
 // twice: with cold caches (evicted before each timed run) and warm ones (the
 // same run done just before). Cells are the finite cells reported (CGAL's
 // traverser also reports the infinite cells it crosses, which are not
-// counted); the cell sequences of both walks are compared, outside the
-// timings, on the "check" line. All three get the same hint (the cell
-// containing q, located beforehand and not timed), single-threaded. The three
-// are run in 5 interleaved rounds and the best thread CPU time of each is
-// kept. The walker's construction (its cell array) is timed separately.
+// counted); the cell sequences of our walk and CGAL's are compared, outside
+// the timings, on the "check" line. All get the same hint (the cell
+// containing q, located beforehand and not timed), single-threaded. The runs
+// are interleaved in 5 rounds and the best thread CPU time of each is kept.
+// The walker's construction (its cell array) is timed separately.
 #include <CGAL_ext/Segment_walk_3.h>
 
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
+#include <array>
+#include <functional>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -62,10 +69,10 @@ void evict_caches() {
   for (std::size_t i = 0; i < buffer.size(); i += 64) buffer[i] = static_cast<unsigned char>(buffer[i] + 1);
 }
 
-// Runs the three measured functions in interleaved rounds (so that a load
-// change on the machine affects them alike) and keeps the best time of each.
-// Each function returns the number of cells it reported. Each timed run
-// starts from the same cache state, whichever function ran before it:
+// Runs the measured functions in interleaved rounds (so that a load change
+// on the machine affects them alike) and keeps the best time of each. Each
+// function returns the number of cells it reported. Each timed run starts
+// from the same cache state, whichever function ran before it:
 //  - cold: the caches are evicted first; the data of the segments is not
 //    in cache, as for queries at random places of a mesh much larger than
 //    the cache;
@@ -73,21 +80,18 @@ void evict_caches() {
 //    the cache is there, as for repeated or nearby queries.
 // (Without either, a run profits from the data its predecessor loaded, which
 // favours whichever walk shares memory with the one run before it.)
-template <class F0, class F1, class F2>
-void interleaved(int rounds, bool cold, F0 f0, F1 f1, F2 f2, double (&best)[3], std::size_t (&cells)[3]) {
-  for (int i = 0; i < 3; ++i) best[i] = 1e300;
-  auto timed = [&](auto& f, int i) {
-    if (cold) evict_caches();
-    else f();
-    const double t = thread_seconds();
-    cells[i] = f();
-    best[i] = std::min(best[i], thread_seconds() - t);
-  };
-  for (int r = 0; r < rounds; ++r) {
-    timed(f0, 0);
-    timed(f1, 1);
-    timed(f2, 2);
-  }
+template <std::size_t N>
+void interleaved(int rounds, bool cold, const std::array<std::function<std::size_t()>, N>& f,
+                 std::array<double, N>& best, std::array<std::size_t, N>& cells) {
+  best.fill(1e300);
+  for (int r = 0; r < rounds; ++r)
+    for (std::size_t i = 0; i < N; ++i) {
+      if (cold) evict_caches();
+      else f[i]();
+      const double t = thread_seconds();
+      cells[i] = f[i]();
+      best[i] = std::min(best[i], thread_seconds() - t);
+    }
 }
 
 } // namespace
@@ -121,8 +125,10 @@ int main(int argc, char** argv) {
   const Walk walk(dt);
   std::printf("walker constructed in %.3f s; %zu segments per class, best of 5 interleaved rounds (thread CPU time), single thread\n\n",
               seconds_since(t0), per_class);
-  std::printf("%-20s %-6s %9s %11s %11s %11s %11s %10s %10s\n", "class", "caches", "segments", "cells/seg", "fast Mc/s",
-              "full Mc/s", "CGAL Mc/s", "fast/CGAL", "full/CGAL");
+  std::printf("%-20s %-6s %9s %9s | %9s %9s %9s %9s %9s | %9s %9s %9s %9s\n", "", "", "", "", "Mcells/s", "", "", "", "",
+              "ratio to", "CGAL", "", "");
+  std::printf("%-20s %-6s %9s %9s | %9s %9s %9s %9s %9s | %9s %9s %9s %9s\n", "class", "caches", "segments", "cells/seg",
+              "fast", "fast bat", "full", "full bat", "CGAL", "fast", "fast bat", "full", "full bat");
 
   const double lo = 0.05, hi = 0.95; // endpoints well inside the convex hull
   std::uniform_real_distribution<double> in(lo, hi);
@@ -155,41 +161,55 @@ int main(int argc, char** argv) {
       segs.push_back({q, p, dt.locate(q)});
     }
 
+    std::vector<Walk::Query> queries;
+    for (const Segment& x : segs) queries.push_back({x.q, x.p, x.hint});
     std::vector<Piece> pieces;
     pieces.reserve(1024);
+    // Per segment into a vector (as a caller that keeps the pieces), and in
+    // batches to a callback (the pieces are not kept, as for a caller that
+    // consumes them at once).
+    auto per_call = [&](auto&& walk_one) {
+      return [&, walk_one] {
+        std::size_t n_cells = 0;
+        for (const Segment& x : segs) {
+          pieces.clear();
+          walk_one(x);
+          for (const Piece& y : pieces) n_cells += y.dimension == 3;
+        }
+        return n_cells;
+      };
+    };
+    auto batched = [&](bool full) {
+      return [&, full] {
+        std::size_t n_cells = 0;
+        auto count = [&](std::size_t, const Piece& y) { n_cells += y.dimension == 3; };
+        if (full) walk.batch(queries, count);
+        else walk.fast_batch(queries, count);
+        return n_cells;
+      };
+    };
+    const std::array<std::function<std::size_t()>, 5> runs = {
+        per_call([&](const Segment& x) { walk.fast(x.q, x.p, std::back_inserter(pieces), x.hint); }), batched(false),
+        per_call([&](const Segment& x) { walk(x.q, x.p, std::back_inserter(pieces), x.hint); }), batched(true),
+        [&] {
+          std::size_t n_cells = 0;
+          for (const Segment& x : segs)
+            for (DT::Cell_handle c : dt.segment_traverser_cell_handles(x.q, x.p, x.hint)) n_cells += !dt.is_infinite(c);
+          return n_cells;
+        }};
     for (const bool cold : {true, false}) {
-    double best[3];
-    std::size_t cells[3];
-    interleaved(
-        5, cold,
-        [&] {
-          std::size_t n_cells = 0;
-          for (const Segment& s : segs) {
-            pieces.clear();
-            walk.fast(s.q, s.p, std::back_inserter(pieces), s.hint);
-            for (const Piece& x : pieces) n_cells += x.dimension == 3;
-          }
-          return n_cells;
-        },
-        [&] {
-          std::size_t n_cells = 0;
-          for (const Segment& s : segs) {
-            pieces.clear();
-            walk(s.q, s.p, std::back_inserter(pieces), s.hint);
-            for (const Piece& x : pieces) n_cells += x.dimension == 3;
-          }
-          return n_cells;
-        },
-        [&] {
-          std::size_t n_cells = 0;
-          for (const Segment& s : segs)
-            for (DT::Cell_handle c : dt.segment_traverser_cell_handles(s.q, s.p, s.hint)) n_cells += !dt.is_infinite(c);
-          return n_cells;
-        },
-        best, cells);
-    const double rf = cells[0] / best[0] / 1e6, rl = cells[1] / best[1] / 1e6, rc = cells[2] / best[2] / 1e6;
-    std::printf("%-20s %-6s %9zu %11.2f %11.2f %11.2f %11.2f %10.2f %10.2f\n", cl.name.c_str(), cold ? "cold" : "warm",
-                segs.size(), double(cells[0]) / segs.size(), rf, rl, rc, rf / rc, rl / rc);
+      std::array<double, 5> best;
+      std::array<std::size_t, 5> cells;
+      interleaved(5, cold, runs, best, cells);
+      std::printf("%-20s %-6s %9zu %9.2f |", cl.name.c_str(), cold ? "cold" : "warm", segs.size(),
+                  double(cells[4]) / double(segs.size()));
+      for (std::size_t i = 0; i < 5; ++i) std::printf(" %9.2f", double(cells[i]) / best[i] / 1e6);
+      std::printf(" |");
+      for (std::size_t i = 0; i < 4; ++i) std::printf(" %9.2f", (double(cells[i]) / best[i]) / (double(cells[4]) / best[4]));
+      std::printf("\n");
+      for (std::size_t i = 0; i < 4; ++i)
+        if (cells[i] != cells[4])
+          std::printf("  (run %zu reported %zu cells, CGAL's traverser %zu)\n", i, cells[i], cells[4]);
     }
     // Cell sequences must agree on these generic segments (checked outside the timings).
     std::size_t mismatches = 0;

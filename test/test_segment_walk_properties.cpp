@@ -629,3 +629,73 @@ TEST_CASE("segment walk: tiny segments keep their parameters", "[segment_walk]")
     }
   }
 }
+
+TEST_CASE("segment walk: batches give the per-segment pieces", "[segment_walk]") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<DT::Point> pts;
+  for (int i = 0; i < 20000; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
+  DT dt(pts.begin(), pts.end());
+  const Segment_walk_3<DT> walk(dt);
+  using Query = Segment_walk_3<DT>::Query;
+  using Piece = Segment_walk_piece_3<DT>;
+  std::vector<DT::Vertex_handle> vs;
+  for (auto v : dt.finite_vertex_handles()) vs.push_back(v);
+  std::uniform_int_distribution<std::size_t> pick(0, vs.size() - 1);
+  // Generic, long, short, outside, vertex-to-vertex, q == p, with and without hints.
+  std::vector<Query> queries;
+  for (int i = 0; i < 3000; ++i) {
+    const DT::Point q(u(rng), u(rng), u(rng));
+    DT::Point p;
+    switch (i % 6) {
+    case 0: p = DT::Point(u(rng), u(rng), u(rng)); break;
+    case 1: p = DT::Point(q.x() + 0.02 * (u(rng) - 0.5), q.y() + 0.02 * (u(rng) - 0.5), q.z() + 0.02 * (u(rng) - 0.5)); break;
+    case 2: p = DT::Point(3 * u(rng) - 1, 3 * u(rng) - 1, 3 * u(rng) - 1); break;
+    case 3: p = q; break;
+    default: p = vs[pick(rng)]->point();
+    }
+    const DT::Point qq = i % 6 == 4 ? vs[pick(rng)]->point() : q;
+    queries.push_back({qq, p, i % 4 == 3 ? DT::Cell_handle() : dt.locate(qq)});
+  }
+  for (const bool fast : {false, true}) {
+    INFO((fast ? "fast_batch" : "batch"));
+    std::vector<std::vector<Piece>> got(queries.size());
+    std::vector<std::size_t> first_call;
+    walk.fast_batch(std::vector<Query>(), [&](std::size_t, const Piece&) { FAIL("a piece for an empty batch"); });
+    auto keep = [&](std::size_t i, const Piece& x) {
+      if (got.at(i).empty()) first_call.push_back(i);
+      got[i].push_back(x);
+    };
+    if (fast) walk.fast_batch(queries, keep);
+    else walk.batch(queries, keep);
+    // Every query has pieces, the queries interleave (the batch is not a
+    // loop over the queries), and each query's pieces equal the per-segment walk's.
+    CHECK(first_call.size() == queries.size());
+    CHECK(!std::is_sorted(first_call.begin(), first_call.end()));
+    std::size_t differ = 0, pieces = 0;
+    for (std::size_t i = 0; i < queries.size(); ++i) {
+      std::vector<Piece> one;
+      if (fast) walk.fast(queries[i].q, queries[i].p, std::back_inserter(one), queries[i].hint);
+      else walk(queries[i].q, queries[i].p, std::back_inserter(one), queries[i].hint);
+      pieces += one.size();
+      bool same = one.size() == got[i].size();
+      for (std::size_t k = 0; same && k < one.size(); ++k)
+        same = one[k].dimension == got[i][k].dimension && one[k].vertices == got[i][k].vertices &&
+               one[k].cell == got[i][k].cell && one[k].t_in == got[i][k].t_in && one[k].t_out == got[i][k].t_out;
+      differ += !same;
+    }
+    CHECK(differ == 0);
+    CHECK(pieces > 20 * queries.size());
+  }
+  // A non-finite point is reported, with its query, before any output.
+  std::vector<Query> bad(queries.begin(), queries.begin() + 100);
+  bad[97].p = DT::Point(0.5, std::numeric_limits<double>::quiet_NaN(), 0.5);
+  std::size_t calls = 0;
+  try {
+    walk.batch(bad, [&](std::size_t, const Piece&) { ++calls; });
+    FAIL("no exception");
+  } catch (const std::invalid_argument& e) {
+    CHECK(std::string(e.what()).find("query 97") != std::string::npos);
+  }
+  CHECK(calls == 0);
+}

@@ -151,9 +151,24 @@ std::string mismatch(const std::vector<Segment_walk_piece_3<T>>& w, const std::v
 
 struct Family_result {
   std::size_t segments = 0, full_disagreements = 0, fast_disagreements = 0, reference_failures = 0;
+  // the batch walks, against the reference and against the per-segment walks
+  std::size_t batch_disagreements = 0, batch_not_identical = 0;
 };
 
-// Runs both modes of the walk on every segment and compares with the reference.
+template <class Piece>
+bool identical(const std::vector<Piece>& a, const std::vector<Piece>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i].dimension != b[i].dimension || a[i].vertices != b[i].vertices || a[i].cell != b[i].cell ||
+        a[i].t_in != b[i].t_in || a[i].t_out != b[i].t_out)
+      return false;
+  return true;
+}
+
+// Runs both modes of the walk on every segment and compares with the
+// reference; then walks all the segments again in one batch per mode, and
+// compares each query's pieces with the reference and with the per-segment
+// walk (which they must equal bit for bit).
 template <class T, class Pred, class Id>
 void compare_walk(const std::string& name, const T& tr, const Pred& in_domain, const Id& id,
                   const std::vector<Test_segment>& segs, Family_result& res, int max_prints = 4) {
@@ -166,6 +181,11 @@ void compare_walk(const std::string& name, const T& tr, const Pred& in_domain, c
   for (auto c : tr.finite_cell_handles())
     if (in_domain(c)) domain_cells.push_back(c);
   int printed = 0;
+  using Piece = Segment_walk_piece_3<T>;
+  std::vector<typename Segment_walk_3<T, Pred>::Query> queries;
+  std::vector<std::vector<Reference_piece>> expected_of[2]; // full, fast
+  std::vector<std::vector<Piece>> single_of[2];
+  std::vector<bool> has_reference;
   for (std::size_t si = 0; si < segs.size(); ++si) {
     const auto& s = segs[si];
     // One query in three passes a hint cell, arbitrary but deterministic; one
@@ -176,6 +196,12 @@ void compare_walk(const std::string& name, const T& tr, const Pred& in_domain, c
     if (si % 3 == 1) hint = domain_cells[(si * 7919) % domain_cells.size()];
     if (si % 3 == 2) hint = walk.locate(Point(s.q[0], s.q[1], s.q[2])).cell;
     ++res.segments;
+    queries.push_back({Point(s.q[0], s.q[1], s.q[2]), Point(s.p[0], s.p[1], s.p[2]), hint});
+    for (int mode = 0; mode < 2; ++mode) {
+      expected_of[mode].emplace_back();
+      single_of[mode].emplace_back();
+    }
+    has_reference.push_back(false);
     std::vector<Reference_piece> expected;
     try {
       expected = ref(s.q, s.p);
@@ -189,8 +215,12 @@ void compare_walk(const std::string& name, const T& tr, const Pred& in_domain, c
     for (const auto& r : expected)
       if (r.t_in != r.t_out || s.q == s.p) expected_fast.push_back(r);
 
+    has_reference.back() = true;
+    expected_of[0].back() = expected;
+    expected_of[1].back() = expected_fast;
+
     auto run = [&](bool fast, const std::vector<Reference_piece>& exp, std::size_t& counter) {
-      std::vector<Segment_walk_piece_3<T>> got;
+      std::vector<Piece>& got = single_of[fast].back();
       std::string why;
       try {
         const Point q(s.q[0], s.q[1], s.q[2]), p(s.p[0], s.p[1], s.p[2]);
@@ -215,6 +245,34 @@ void compare_walk(const std::string& name, const T& tr, const Pred& in_domain, c
     run(false, expected, res.full_disagreements);
     run(true, expected_fast, res.fast_disagreements);
   }
+
+  for (const bool fast : {false, true}) {
+    std::vector<std::vector<Piece>> got(queries.size());
+    std::string failure;
+    try {
+      auto keep = [&](std::size_t i, const Piece& x) { got.at(i).push_back(x); };
+      if (fast) walk.fast_batch(queries, keep);
+      else walk.batch(queries, keep);
+    } catch (const std::exception& e) {
+      failure = e.what();
+    }
+    if (!failure.empty()) {
+      res.batch_disagreements += queries.size();
+      std::printf("BATCH (%s) EXCEPTION on %s: %s\n", fast ? "fast" : "full", name.c_str(), failure.c_str());
+      continue;
+    }
+    for (std::size_t i = 0; i < queries.size(); ++i) {
+      if (!has_reference[i]) continue;
+      const std::string why = mismatch(got[i], expected_of[fast][i], tol, in_domain, id);
+      if (!why.empty()) {
+        ++res.batch_disagreements;
+        if (printed++ < max_prints)
+          std::printf("BATCH DISAGREEMENT (%s) on %s, segment [%s]\n  q = %s\n  p = %s\n  %s\n", fast ? "fast" : "full",
+                      name.c_str(), segs[i].kind.c_str(), fmt(segs[i].q).c_str(), fmt(segs[i].p).c_str(), why.c_str());
+      }
+      if (!identical(got[i], single_of[fast][i])) ++res.batch_not_identical;
+    }
+  }
 }
 
 void compare_on(const Test_mesh& m, const std::vector<Test_segment>& segs, Family_result& res, int max_prints = 4) {
@@ -224,11 +282,15 @@ void compare_on(const Test_mesh& m, const std::vector<Test_segment>& segs, Famil
 }
 
 void report(const std::string& family, const Family_result& r) {
-  std::printf("%-22s segments %6zu  full disagreements %5zu  fast disagreements %5zu  reference failures %zu\n",
-              family.c_str(), r.segments, r.full_disagreements, r.fast_disagreements, r.reference_failures);
+  std::printf("%-22s segments %6zu  full disagreements %5zu  fast disagreements %5zu  batch disagreements %5zu  "
+              "batch not identical %5zu  reference failures %zu\n",
+              family.c_str(), r.segments, r.full_disagreements, r.fast_disagreements, r.batch_disagreements,
+              r.batch_not_identical, r.reference_failures);
   CHECK(r.reference_failures == 0);
   CHECK(r.full_disagreements == 0);
   CHECK(r.fast_disagreements == 0);
+  CHECK(r.batch_disagreements == 0);
+  CHECK(r.batch_not_identical == 0);
 }
 
 Test_mesh single_tet() {

@@ -25,6 +25,7 @@
 #include <iterator>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -57,7 +58,42 @@ struct Segment_walk_piece_3 {
   double t_out = 0;
 };
 
+/// \ingroup PkgCGALExtWalk
+/// One segment \f$[q, p]\f$ of a batch walk (`Segment_walk_3::fast_batch()`
+/// and `Segment_walk_3::batch()`).
+///
+/// \tparam Triangulation a CGAL `Triangulation_3`
+template <class Triangulation>
+struct Segment_walk_query_3 {
+  /// The start point.
+  typename Triangulation::Point q;
+  /// The end point.
+  typename Triangulation::Point p;
+  /// A cell near `q`, or null (ignored if not a domain cell).
+  typename Triangulation::Cell_handle hint{};
+};
+
 namespace internal {
+
+// Output iterator that hands each piece to a callback f(i, piece), for the
+// pieces of query i of a batch walk.
+template <class F, class Piece>
+struct Walk_callback_iterator {
+  using iterator_category = std::output_iterator_tag;
+  using value_type = void;
+  using difference_type = std::ptrdiff_t;
+  using pointer = void;
+  using reference = void;
+  F* f;
+  std::size_t i;
+  Walk_callback_iterator& operator*() { return *this; }
+  Walk_callback_iterator& operator++() { return *this; }
+  Walk_callback_iterator operator++(int) { return *this; }
+  Walk_callback_iterator& operator=(const Piece& piece) {
+    (*f)(i, piece);
+    return *this;
+  }
+};
 
 // Vertex indices of facet i of a positively oriented cell, ordered so that
 // orientation(facet, vertex i) is positive (the cell is on the positive side).
@@ -243,6 +279,44 @@ public:
     return run<false>(q, p, out, hint);
   }
 
+  /// A segment of a batch walk.
+  using Query = Segment_walk_query_3<Tr>;
+
+  /// Batch fast mode: the fast-mode pieces of many segments, walked several
+  /// at a time. The output for each query is exactly that of
+  /// `fast(q, p, out, hint)`, but the walks of up to 8 queries are
+  /// interleaved step by step, and the cells, records and vertices they are
+  /// about to visit are requested from memory ahead of use: on a mesh larger
+  /// than the cache, a single walk spends most of its time waiting for each
+  /// next cell, and the interleaved walks wait together. Single-threaded
+  /// and deterministic: the sequence of callback calls depends only on the
+  /// input.
+  ///
+  /// `f(i, piece)` is called for every piece of query `i`. The pieces of one
+  /// query come in order along its segment; the pieces of different queries
+  /// are interleaved, in an order that depends only on the input. All the
+  /// points are checked before any piece is reported.
+  /// \tparam QueryRange a random-access range of `Query` (`size()` and `operator[]`)
+  /// \tparam PieceCallback callable as `f(std::size_t i, const Piece& piece)`
+  /// \param queries the segments and their hints
+  /// \param f receives the pieces
+  /// \throws std::invalid_argument if a coordinate is not finite (naming the query), before any output
+  template <class QueryRange, class PieceCallback>
+  void fast_batch(const QueryRange& queries, PieceCallback&& f) const {
+    run_batch<false>(queries, f);
+  }
+
+  /// Batch full output: as `fast_batch()`, with the pieces of `operator()`.
+  /// \tparam QueryRange a random-access range of `Query` (`size()` and `operator[]`)
+  /// \tparam PieceCallback callable as `f(std::size_t i, const Piece& piece)`
+  /// \param queries the segments and their hints
+  /// \param f receives the pieces
+  /// \throws std::invalid_argument if a coordinate is not finite (naming the query), before any output
+  template <class QueryRange, class PieceCallback>
+  void batch(const QueryRange& queries, PieceCallback&& f) const {
+    run_batch<true>(queries, f);
+  }
+
   /// Exact point location: the lowest-dimensional domain simplex containing
   /// `x`, as a piece with `t_in == t_out == 0`, or a gap (dimension -1) if
   /// `x` is outside the closed domain.
@@ -398,14 +472,117 @@ private:
     r.dimension = k - 1;
   }
 
-  static void check_finite(const Point& x, const char* what) {
+  static void check_finite(const Point& x, const char* what, std::size_t query = std::size_t(-1)) {
     const double c[3] = {CGAL::to_double(x.x()), CGAL::to_double(x.y()), CGAL::to_double(x.z())};
     for (double v : c)
       if (!std::isfinite(v)) {
         std::ostringstream os;
-        os << "Segment_walk_3::" << what << ": the point (" << c[0] << ", " << c[1] << ", " << c[2]
-           << ") has a coordinate that is not finite";
+        os << "Segment_walk_3::" << what << ": ";
+        if (query != std::size_t(-1)) os << "query " << query << ": ";
+        os << "the point (" << c[0] << ", " << c[1] << ", " << c[2] << ") has a coordinate that is not finite";
         throw std::invalid_argument(os.str());
+      }
+  }
+
+  // The batch walk: lanes of queries in the cell array's loop, one step of
+  // each in turn; everything else (no hint, q not strictly inside its hint,
+  // degenerate steps, gaps) runs to the end of its query as in run().
+  template <bool Full, class QueryRange, class F>
+  void run_batch(const QueryRange& queries, F& f) const {
+    using It = internal::Walk_callback_iterator<F, Piece>;
+    using Sk = Sink<Full, It>;
+    const char* what = Full ? "batch" : "fast_batch";
+    const std::size_t n = queries.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      check_finite(queries[i].q, what, i);
+      check_finite(queries[i].p, what, i);
+    }
+    if (!cells_) {
+      for (std::size_t i = 0; i < n; ++i) run<Full>(queries[i].q, queries[i].p, It{&f, i}, queries[i].hint);
+      return;
+    }
+    // 8 lanes: with the 5 prefetches of a step, enough loads in flight to
+    // cover the latency of memory; 12 or 16 lanes, or steps split in two so
+    // that only the record taken is prefetched, measured no faster.
+    constexpr std::size_t lanes_n = 8;
+    struct Lane {
+      std::size_t i = 0;
+      bool active = false;
+      std::optional<Ctx> x;
+      Array_state st;
+      Array_position cur{};
+    };
+    std::array<Lane, lanes_n> lanes;
+    // A query's start reads its hint cell, the cell's vertices, the record
+    // index and the record: they are requested from memory in two stages,
+    // 2 * lanes_n and lanes_n queries ahead, and the record index found in
+    // the second is kept in a ring for the start. (The ring store also keeps
+    // the compiler from deleting this lambda's calls: with prefetches alone
+    // it is "pure", and GCC 12 drops calls to pure functions.)
+    constexpr std::size_t ring_n = 2 * lanes_n;
+    std::array<std::uint32_t, ring_n> ring;
+    auto prefetch_ahead = [&](std::size_t i) {
+      if (i + 2 * lanes_n < n) {
+        const Cell_handle c = queries[i + 2 * lanes_n].hint;
+        const std::uint32_t* e = cells_->index_entry(c);
+#if defined(__GNUC__)
+        if (c != Cell_handle()) __builtin_prefetch(&*c);
+        if (e) __builtin_prefetch(e);
+#endif
+      }
+      if (i + lanes_n < n) {
+        const Cell_handle c = queries[i + lanes_n].hint;
+        const std::uint32_t ci = cells_->index(c);
+        ring[(i + lanes_n) % ring_n] = ci;
+#if defined(__GNUC__)
+        if (ci != Cell_array::outside) {
+          __builtin_prefetch(&cells_->records[ci]);
+          for (int l = 0; l < 4; ++l) __builtin_prefetch(&c->vertex(l)->point());
+        }
+#endif
+      }
+    };
+    for (std::size_t i = 0; i < lanes_n && i < n; ++i) ring[i] = cells_->index(queries[i].hint);
+    std::size_t next = 0;
+    // Starts queries until one is in the loop, in lane L; false if none is left.
+    auto start = [&](Lane& L) {
+      while (next < n) {
+        const std::size_t i = next++;
+        prefetch_ahead(i);
+        const Query& qu = queries[i];
+        Sk sink{this, It{&f, i}};
+        if (qu.q == qu.p) {
+          *sink.out++ = make_piece(locate_simplex(qu.q, qu.hint), 0.0, 1.0);
+          continue;
+        }
+        Ctx& x = L.x.emplace(qu.q, qu.p, max_steps_);
+        const std::uint32_t ci = ring[i % ring_n];
+        L.st = Array_state();
+        int k;
+        if (prepare_fast(x) && ci != Cell_array::outside && array_enter(x, qu.hint, ci, L.st, k)) {
+          L.i = i;
+          L.cur = Array_position{&cells_->records[ci], ci, k, true, 0.0};
+#if defined(__GNUC__)
+          // the record after the first step (its own steps prefetch the next ones)
+          const std::uint32_t link = L.cur.r->n[k];
+          if (link != Cell_array::outside) __builtin_prefetch(&cells_->records[link >> 2]);
+#endif
+          return true;
+        }
+        finish(x, start_at(x, locate_simplex(qu.q, qu.hint), sink), sink);
+      }
+      return false;
+    };
+    std::size_t active = 0;
+    for (Lane& L : lanes) active += (L.active = start(L)) ? 1 : 0;
+    while (active > 0)
+      for (Lane& L : lanes) {
+        if (!L.active) continue;
+        Sk sink{this, It{&f, L.i}};
+        Next nx;
+        if (array_step(*L.x, L.st, L.cur, nx, sink)) continue;
+        finish(*L.x, nx, sink);
+        if (!(L.active = start(L))) --active;
       }
   }
 
@@ -770,10 +947,17 @@ private:
   // ci), so that loading them overlaps with the look-up of the record.
   template <class S>
   bool array_start(Ctx& x, Cell_handle c, std::uint32_t ci, Next& nx, S& sink) const {
+    Array_state st;
+    int k;
+    if (!array_enter(x, c, ci, st, k)) return false;
+    nx = array_loop(x, st, ci, k, true, 0.0, sink);
+    return true;
+  }
+  // The set-up of array_start: the vertex data and the exit facet k.
+  bool array_enter(Ctx& x, Cell_handle c, std::uint32_t ci, Array_state& st, int& k) const {
 #if defined(__GNUC__)
     __builtin_prefetch(&cells_->records[ci]);
 #endif
-    Array_state st;
     for (int l = 0; l < 4; ++l) {
       const Point& a = pt(c, l);
       const double xyz[3] = {CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z())};
@@ -788,7 +972,7 @@ private:
       const double det = a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
       if (!(det < -x.E)) return false;
     }
-    int k = -1;
+    k = -1;
     for (int i = 0; i < 4 && k < 0; ++i) {
       const std::array<int, 3>& g = internal::walk_inner_facet(i);
       const double m0 = -pi(P[g[1]], P[g[2]]), m1 = -pi(P[g[2]], P[g[0]]), m2 = -pi(P[g[0]], P[g[1]]);
@@ -799,9 +983,7 @@ private:
         st.pool[g[2]].mu = m2;
       }
     }
-    if (k < 0) return false;
-    nx = array_loop(x, st, ci, k, true, 0.0, sink);
-    return true;
+    return k >= 0;
   }
 
   // Entered record ci through the interior of its facet j at t_in.
@@ -822,16 +1004,40 @@ private:
     return array_loop(x, st, ci, j, false, t_in, sink);
   }
 
-  // The loop: in record ci, entered through facet j (or, if have_exit, with
-  // the exit facet j already chosen and every vertex loaded).
+  // Where the loop is: in record ci (at r), entered through facet j at
+  // t_in (or, if have_exit, with the exit facet j already chosen and every
+  // vertex loaded).
+  struct Array_position {
+    const typename Cell_array::Record* r;
+    std::uint32_t ci;
+    int j;
+    bool have_exit;
+    double t_in;
+  };
+
+  // The loop, one segment at a time.
   template <class S>
   Next array_loop(Ctx& x, Array_state& st, std::uint32_t ci, int j, bool have_exit, double t_in, S& sink) const {
+    Array_position cur{&cells_->records[ci], ci, j, have_exit, t_in};
+    Next nx;
+    while (array_step(x, st, cur, nx, sink)) {
+    }
+    return nx;
+  }
+
+  // One step of the loop: the pieces of the current cell, then either the
+  // move to the next record (true) or the end of the loop, with nx (false).
+  template <class S>
+  bool array_step(Ctx& x, Array_state& st, Array_position& cur, Next& nx, S& sink) const {
     const auto& recs = cells_->records;
-    const typename Cell_array::Record* r = &recs[ci];
-    for (;;) {
+    const typename Cell_array::Record* r = cur.r;
+    const std::uint32_t ci = cur.ci;
+    const int j = cur.j;
+    const double t_in = cur.t_in;
+    {
       x.tick();
       int k = j;
-      if (!have_exit) {
+      if (!cur.have_exit) {
         const std::array<int, 3>& f = internal::walk_inner_facet(j);
         Vertex_data& d = st.at(j);
         const Vertex_data& A = st.at(f[0]);
@@ -865,7 +1071,10 @@ private:
             if (sc == CGAL::POSITIVE) e = 1;
             else if (sc == CGAL::NEGATIVE) e = 0;
           }
-          if (e < 0) return traverse_cell(x, cells_->cell_handles[ci], t_in, sink); // through an edge or a vertex
+          if (e < 0) { // through an edge or a vertex
+            nx = traverse_cell(x, cells_->cell_handles[ci], t_in, sink);
+            return false;
+          }
         }
         // Selections by index arithmetic: compilers turn conditional
         // expressions here into branches, which the random exit mispredicts.
@@ -876,7 +1085,6 @@ private:
         st.pool[pos[ia]].mu = std::fabs(v[ib]);
         st.pool[pos[ib]].mu = std::fabs(v[ia]);
       }
-      have_exit = false;
       // Exit facet (g0, g1, g2), the cell on its positive side.
       const std::array<int, 3>& g = internal::walk_inner_facet(k);
       const Vertex_data &a = st.at(g[0]), &b = st.at(g[1]), &c = st.at(g[2]);
@@ -892,7 +1100,8 @@ private:
       if (op >= 0) {
         sink(ci, 15u, t_in, 1.0, false);
         if (op == 0) sink(ci, 15u & ~(1u << k), 1.0, 1.0, true);
-        return Next();
+        nx = Next();
+        return false;
       }
       // (A denominator that underflows on a tiny cell: the plane formula.)
       const double den = (m0 + m1 + m2) * x.dd;
@@ -900,8 +1109,10 @@ private:
                                               : t_of(x, Simplex{cells_->cell_handles[ci], 15u & ~(1u << k)}, t_in);
       sink(ci, 15u, t_in, t_out, false);
       const std::uint32_t link = r->n[k];
-      if (link == Cell_array::outside)
-        return Next{false, Simplex{cells_->cell_handles[ci], 15u & ~(1u << k)}, t_out, true};
+      if (link == Cell_array::outside) {
+        nx = Next{false, Simplex{cells_->cell_handles[ci], 15u & ~(1u << k)}, t_out, true};
+        return false;
+      }
       sink(ci, 15u & ~(1u << k), t_out, t_out, true);
       // Move to the neighbour n; its vertex opposite the shared facet takes
       // the pool entry of the vertex k left behind.
@@ -923,11 +1134,16 @@ private:
       // Start loading the possible next records while this one is processed
       // (all four, without a branch: the one back is in cache anyway).
       for (int i = 0; i < 4; ++i) __builtin_prefetch(&recs[rn->n[i] == Cell_array::outside ? ni : rn->n[i] >> 2]);
+      // and the new vertex of the next step (a batch walk comes back to this
+      // segment only after steps of the others: it is loaded by then)
+      __builtin_prefetch(cells_->point(rn->v[m]));
 #endif
-      r = rn;
-      ci = ni;
-      j = m;
-      t_in = t_out;
+      cur.r = rn;
+      cur.ci = ni;
+      cur.j = m;
+      cur.have_exit = false;
+      cur.t_in = t_out;
+      return true;
     }
   }
 

@@ -257,6 +257,14 @@ public:
     const std::uint32_t i = cell_index_(c);
     return i == Handle_index<Cell_handle>::none ? outside : slot_to_record_[i];
   }
+  /// The table entry that `index(c)` reads, or null (for walks that load
+  /// it ahead of use).
+  /// \param c a cell handle of the triangulation (or null)
+  const std::uint32_t* index_entry(Cell_handle c) const {
+    if (c == Cell_handle() || slot_to_record_.empty()) return nullptr;
+    const std::uint32_t i = cell_index_(c);
+    return i == Handle_index<Cell_handle>::none ? nullptr : &slot_to_record_[i];
+  }
   /// Coordinates of vertex `k`.
   /// \param k a vertex index of a record
   const double* point(std::int32_t k) const { return vertices[std::size_t(k)].xyz; }
