@@ -525,6 +525,33 @@ TEST_CASE("segment walk: hints, point locator, concurrent use of one walker", "[
   CHECK(l.cell->info().in_domain());
 }
 
+// For every link of the cell array: the walk's table of vertex
+// correspondences across a facet (internal::walk_facet_map, which assumes
+// that neighbouring cells see their common facet in reverse cyclic order)
+// maps each shared vertex of the neighbour to the same vertex of the cell.
+// Returns the number of links checked.
+template <class Array>
+std::size_t check_facet_maps(const Array& a) {
+  std::size_t links = 0;
+  for (const auto& r : a.records)
+    for (int k = 0; k < 4; ++k) {
+      if (r.n[k] == a.outside) continue;
+      const auto& rn = a.records[r.n[k] >> 2];
+      const int m = int(r.n[k] & 3u);
+      const auto& g = internal::walk_inner_facet(k);
+      const std::int32_t id0 = rn.v[internal::walk_inner_facet(m)[0]];
+      const int matches = int(r.v[g[0]] == id0) + int(r.v[g[1]] == id0) + int(r.v[g[2]] == id0);
+      REQUIRE(matches == 1);
+      const unsigned rho = unsigned(r.v[g[1]] == id0) + 2u * unsigned(r.v[g[2]] == id0);
+      const unsigned map = internal::walk_facet_map[std::size_t((4 * k + m) * 3) + rho];
+      CHECK(int((map >> (2 * m)) & 3u) == k);
+      for (int i = 0; i < 4; ++i)
+        if (i != m) CHECK(rn.v[i] == r.v[(map >> (2 * i)) & 3u]);
+      ++links;
+    }
+  return links;
+}
+
 TEST_CASE("cell array of the walk: handle index and adjacency copy", "[segment_walk]") {
   // Handle_index on pointers into one buffer, visited in an order that
   // interleaves "blocks": a small block inside the gap between two others
@@ -591,6 +618,12 @@ TEST_CASE("cell array of the walk: handle index and adjacency copy", "[segment_w
     }
   }
   CHECK(a.records.size() == n_domain);
+  CHECK(check_facet_maps(a) > 3 * n_domain);
+  // The same on a mesh built from a tet list (re-oriented tets, grid with a tunnel).
+  const Mesh_tr mt = build(make_kuhn_grid(4, 3, 3, [](int i, int j, int) { return !(i == 1 && j == 1); }));
+  const internal::Walk_cell_array_3<Mesh_tr> am(mt, Is_tet_mesh_domain_cell());
+  REQUIRE(am.valid());
+  CHECK(check_facet_maps(am) > 2 * am.records.size());
   for (DT::Cell_handle c : dt.all_cell_handles())
     if (dt.is_infinite(c)) CHECK(a.index(c) == a.outside);
   CHECK(a.index(DT::Cell_handle()) == a.outside);

@@ -99,6 +99,30 @@ struct Walk_callback_iterator {
 // orientation(facet, vertex i) is positive (the cell is on the positive side).
 inline constexpr std::array<int, 3> walk_inner_facet_table[4] = {{2, 1, 3}, {2, 3, 0}, {0, 3, 1}, {0, 1, 2}};
 inline const std::array<int, 3>& walk_inner_facet(int i) { return walk_inner_facet_table[i]; }
+// Moving from a cell r across its facet k into the neighbour n (whose facet
+// m it is): for each local vertex i of n, the local index in r of the same
+// vertex (2 bits per i; the vertex i = m, new, gets k), at entry
+// (4 k + m) * 3 + rho, where n's vertex f[0] (f: inner facet m) is r's
+// vertex g[rho] (g: inner facet k). A valid triangulation data structure
+// orients neighbouring cells consistently, so the two cells see the shared
+// facet in reverse cyclic order: f = (g[rho], g[rho - 1], g[rho + 1]).
+constexpr std::array<std::uint8_t, 48> make_walk_facet_map() {
+  std::array<std::uint8_t, 48> t{};
+  for (int k = 0; k < 4; ++k)
+    for (int m = 0; m < 4; ++m)
+      for (int rho = 0; rho < 3; ++rho) {
+        const std::array<int, 3>& g = walk_inner_facet_table[k];
+        const std::array<int, 3>& f = walk_inner_facet_table[m];
+        int l[4] = {0, 0, 0, 0};
+        l[m] = k;
+        l[f[0]] = g[rho];
+        l[f[1]] = g[(rho + 2) % 3];
+        l[f[2]] = g[(rho + 1) % 3];
+        t[std::size_t((4 * k + m) * 3 + rho)] = std::uint8_t(l[0] | l[1] << 2 | l[2] << 4 | l[3] << 6);
+      }
+  return t;
+}
+inline constexpr std::array<std::uint8_t, 48> walk_facet_map = make_walk_facet_map();
 // Output iterators that are std::back_inserter of a std::vector<Piece> get
 // the pieces built in place: building a piece in a temporary and copying it
 // makes the wide loads of the copy wait for the narrow stores that built it
@@ -1119,16 +1143,13 @@ private:
       const std::uint32_t ni = link >> 2;
       const int m = int(link & 3u);
       const typename Cell_array::Record* rn = &recs[ni];
-      // (With masks, not conditional expressions, for the same reason.)
+      // One comparison finds how the shared facet is rotated between the two
+      // cells (see walk_facet_map); without a branch, for the same reason.
+      const std::int32_t id0 = rn->v[internal::walk_inner_facet(m)[0]];
+      const unsigned rho = unsigned(r->v[g[1]] == id0) + 2u * unsigned(r->v[g[2]] == id0);
+      const unsigned map = internal::walk_facet_map[std::size_t((4 * k + m) * 3) + rho];
       unsigned slots = 0;
-      for (int i = 0; i < 4; ++i) {
-        const std::int32_t id = rn->v[i];
-        unsigned sl = 0;
-        for (int l = 0; l < 4; ++l) sl |= (0u - unsigned(r->v[l] == id)) & unsigned(st.slot(l));
-        const unsigned is_new = 0u - unsigned(i == m); // the new vertex takes the entry left behind
-        sl = (sl & ~is_new) | (unsigned(st.slot(k)) & is_new);
-        slots |= sl << (2 * i);
-      }
+      for (int i = 0; i < 4; ++i) slots |= ((st.slots >> (2 * ((map >> (2 * i)) & 3u))) & 3u) << (2 * i);
       st.slots = slots;
 #if defined(__GNUC__)
       // Start loading the possible next records while this one is processed
