@@ -6,9 +6,9 @@
 // For three classes of random segments (short: half the mean vertex
 // spacing; medium: about 10 cells; long: across the cube), it measures in one
 // run the cells per second of
-//  - Segment_walk_3::fast, one segment per call, pieces into a vector;
-//  - Segment_walk_3::fast_batch, all the segments in one call, pieces to a
-//    callback (the walks are interleaved, 8 at a time);
+//  - Segment_walk_3::fast, one segment per call;
+//  - Segment_walk_3::fast_batch, all the segments in one call (the walks
+//    are interleaved, 8 at a time);
 //  - the same two for the full output (operator() and batch);
 //  - Triangulation_3::segment_traverser_cell_handles, one segment at a time,
 //    as CGAL offers it;
@@ -19,7 +19,9 @@
 // the timings, on the "check" line. All get the same hint (the cell
 // containing q, located beforehand and not timed), single-threaded. The runs
 // are interleaved in 5 rounds and the best thread CPU time of each is kept.
-// The walker's construction (its cell array) is timed separately.
+// The walker's construction (its cell array) is timed separately. Both
+// forms of our walk hand each piece to the same counting code (an output
+// iterator for the single calls, a callback for the batches).
 #include <CGAL_ext/Segment_walk_3.h>
 
 #include <CGAL/Delaunay_triangulation_3.h>
@@ -94,6 +96,23 @@ void interleaved(int rounds, bool cold, const std::array<std::function<std::size
     }
 }
 
+// Output iterator that counts the cells among the pieces it receives.
+struct Cell_counter {
+  using iterator_category = std::output_iterator_tag;
+  using value_type = void;
+  using difference_type = std::ptrdiff_t;
+  using pointer = void;
+  using reference = void;
+  std::size_t* cells;
+  Cell_counter& operator*() { return *this; }
+  Cell_counter& operator++() { return *this; }
+  Cell_counter operator++(int) { return *this; }
+  Cell_counter& operator=(const Piece& x) {
+    *cells += x.dimension == 3;
+    return *this;
+  }
+};
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -163,18 +182,12 @@ int main(int argc, char** argv) {
 
     std::vector<Walk::Query> queries;
     for (const Segment& x : segs) queries.push_back({x.q, x.p, x.hint});
-    std::vector<Piece> pieces;
-    pieces.reserve(1024);
-    // Per segment into a vector (as a caller that keeps the pieces), and in
-    // batches to a callback (the pieces are not kept, as for a caller that
-    // consumes them at once).
-    auto per_call = [&](auto&& walk_one) {
-      return [&, walk_one] {
+    auto per_call = [&](bool full) {
+      return [&, full] {
         std::size_t n_cells = 0;
         for (const Segment& x : segs) {
-          pieces.clear();
-          walk_one(x);
-          for (const Piece& y : pieces) n_cells += y.dimension == 3;
+          if (full) walk(x.q, x.p, Cell_counter{&n_cells}, x.hint);
+          else walk.fast(x.q, x.p, Cell_counter{&n_cells}, x.hint);
         }
         return n_cells;
       };
@@ -189,9 +202,7 @@ int main(int argc, char** argv) {
       };
     };
     const std::array<std::function<std::size_t()>, 5> runs = {
-        per_call([&](const Segment& x) { walk.fast(x.q, x.p, std::back_inserter(pieces), x.hint); }), batched(false),
-        per_call([&](const Segment& x) { walk(x.q, x.p, std::back_inserter(pieces), x.hint); }), batched(true),
-        [&] {
+        per_call(false), batched(false), per_call(true), batched(true), [&] {
           std::size_t n_cells = 0;
           for (const Segment& x : segs)
             for (DT::Cell_handle c : dt.segment_traverser_cell_handles(x.q, x.p, x.hint)) n_cells += !dt.is_infinite(c);
@@ -212,18 +223,24 @@ int main(int argc, char** argv) {
           std::printf("  (run %zu reported %zu cells, CGAL's traverser %zu)\n", i, cells[i], cells[4]);
     }
     // Cell sequences must agree on these generic segments (checked outside the timings).
+    // The batch's sequences too.
     std::size_t mismatches = 0;
-    for (const Segment& s : segs) {
-      pieces.clear();
+    std::vector<std::vector<DT::Cell_handle>> batch_cells(segs.size());
+    walk.fast_batch(queries, [&](std::size_t i, const Piece& y) {
+      if (y.dimension == 3) batch_cells[i].push_back(y.cell);
+    });
+    for (std::size_t i = 0; i < segs.size(); ++i) {
+      const Segment& s = segs[i];
+      std::vector<Piece> pieces;
       walk.fast(s.q, s.p, std::back_inserter(pieces), s.hint);
       std::vector<DT::Cell_handle> a, b;
       for (const Piece& x : pieces)
         if (x.dimension == 3) a.push_back(x.cell);
       for (DT::Cell_handle c : dt.segment_traverser_cell_handles(s.q, s.p, s.hint))
         if (!dt.is_infinite(c)) b.push_back(c);
-      mismatches += a != b;
+      mismatches += a != b || batch_cells[i] != b;
     }
-    std::printf("%-20s %-6s %zu of %zu segments with a cell sequence different from CGAL's\n", cl.name.c_str(), "check",
+    std::printf("%-20s %-6s %zu of %zu segments with a cell sequence (single call or batch) different from CGAL's\n", cl.name.c_str(), "check",
                 mismatches, segs.size());
   }
   return 0;

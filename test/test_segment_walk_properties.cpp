@@ -663,6 +663,49 @@ TEST_CASE("segment walk: tiny segments keep their parameters", "[segment_walk]")
   }
 }
 
+// Walks the queries in one batch per mode and compares each query's pieces
+// with those of single calls, bit for bit. Returns the number of queries
+// whose pieces differ; counts the pieces and tells whether the queries'
+// outputs interleaved.
+template <class Walk, class Query>
+std::size_t batch_differences(const Walk& walk, const std::vector<Query>& queries, std::size_t* pieces = nullptr,
+                              bool* interleaved = nullptr) {
+  using Piece = typename Walk::Piece;
+  std::size_t differ = 0;
+  for (const bool fast : {false, true}) {
+    std::vector<std::vector<Piece>> got(queries.size());
+    std::vector<std::size_t> first_call;
+    auto keep = [&](std::size_t i, const Piece& x) {
+      if (got.at(i).empty()) first_call.push_back(i);
+      got[i].push_back(x);
+    };
+    if (fast) walk.fast_batch(queries, keep);
+    else walk.batch(queries, keep);
+    if (interleaved && fast) *interleaved = !std::is_sorted(first_call.begin(), first_call.end());
+    for (std::size_t i = 0; i < queries.size(); ++i) {
+      std::vector<Piece> one;
+      if (fast) walk.fast(queries[i].q, queries[i].p, std::back_inserter(one), queries[i].hint);
+      else walk(queries[i].q, queries[i].p, std::back_inserter(one), queries[i].hint);
+      if (pieces) *pieces += one.size();
+      bool same = !one.empty() && one.size() == got[i].size();
+      for (std::size_t k = 0; same && k < one.size(); ++k)
+        same = one[k].dimension == got[i][k].dimension && one[k].vertices == got[i][k].vertices &&
+               one[k].cell == got[i][k].cell && one[k].t_in == got[i][k].t_in && one[k].t_out == got[i][k].t_out;
+      differ += !same;
+    }
+  }
+  return differ;
+}
+
+// A domain with a pocket of excluded cells: finite non-domain hints.
+struct Outside_pocket {
+  const DT* dt;
+  bool operator()(DT::Cell_handle c) const {
+    const auto g = CGAL::centroid(dt->tetrahedron(c));
+    return !(g.x() < 0.4 && g.y() < 0.4 && g.z() < 0.4);
+  }
+};
+
 TEST_CASE("segment walk: batches give the per-segment pieces", "[segment_walk]") {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(0, 1);
@@ -675,7 +718,11 @@ TEST_CASE("segment walk: batches give the per-segment pieces", "[segment_walk]")
   std::vector<DT::Vertex_handle> vs;
   for (auto v : dt.finite_vertex_handles()) vs.push_back(v);
   std::uniform_int_distribution<std::size_t> pick(0, vs.size() - 1);
-  // Generic, long, short, outside, vertex-to-vertex, q == p, with and without hints.
+  std::vector<DT::Cell_handle> infinite_cells;
+  for (auto c : dt.all_cell_handles())
+    if (dt.is_infinite(c)) infinite_cells.push_back(c);
+  // Generic, short, leaving the hull, q == p, vertex to vertex; hints
+  // located, null, infinite, or arbitrary domain cells.
   std::vector<Query> queries;
   for (int i = 0; i < 3000; ++i) {
     const DT::Point q(u(rng), u(rng), u(rng));
@@ -688,47 +735,55 @@ TEST_CASE("segment walk: batches give the per-segment pieces", "[segment_walk]")
     default: p = vs[pick(rng)]->point();
     }
     const DT::Point qq = i % 6 == 4 ? vs[pick(rng)]->point() : q;
-    queries.push_back({qq, p, i % 4 == 3 ? DT::Cell_handle() : dt.locate(qq)});
+    DT::Cell_handle hint = dt.locate(qq);
+    if (i % 8 == 3) hint = DT::Cell_handle();
+    if (i % 8 == 5) hint = infinite_cells[std::size_t(i) % infinite_cells.size()];
+    if (i % 8 == 7) hint = vs[pick(rng)]->cell();
+    queries.push_back({qq, p, hint});
   }
-  for (const bool fast : {false, true}) {
-    INFO((fast ? "fast_batch" : "batch"));
-    std::vector<std::vector<Piece>> got(queries.size());
-    std::vector<std::size_t> first_call;
-    walk.fast_batch(std::vector<Query>(), [&](std::size_t, const Piece&) { FAIL("a piece for an empty batch"); });
-    auto keep = [&](std::size_t i, const Piece& x) {
-      if (got.at(i).empty()) first_call.push_back(i);
-      got[i].push_back(x);
-    };
-    if (fast) walk.fast_batch(queries, keep);
-    else walk.batch(queries, keep);
-    // Every query has pieces, the queries interleave (the batch is not a
-    // loop over the queries), and each query's pieces equal the per-segment walk's.
-    CHECK(first_call.size() == queries.size());
-    CHECK(!std::is_sorted(first_call.begin(), first_call.end()));
-    std::size_t differ = 0, pieces = 0;
-    for (std::size_t i = 0; i < queries.size(); ++i) {
-      std::vector<Piece> one;
-      if (fast) walk.fast(queries[i].q, queries[i].p, std::back_inserter(one), queries[i].hint);
-      else walk(queries[i].q, queries[i].p, std::back_inserter(one), queries[i].hint);
-      pieces += one.size();
-      bool same = one.size() == got[i].size();
-      for (std::size_t k = 0; same && k < one.size(); ++k)
-        same = one[k].dimension == got[i][k].dimension && one[k].vertices == got[i][k].vertices &&
-               one[k].cell == got[i][k].cell && one[k].t_in == got[i][k].t_in && one[k].t_out == got[i][k].t_out;
-      differ += !same;
-    }
-    CHECK(differ == 0);
-    CHECK(pieces > 20 * queries.size());
+  std::size_t pieces = 0;
+  bool interleaved = false;
+  CHECK(batch_differences(walk, queries, &pieces, &interleaved) == 0);
+  CHECK(pieces > 20 * queries.size());
+  CHECK(interleaved); // the batch is not a loop over the queries
+  // Fewer queries than lanes, and around multiples of the 8 lanes.
+  for (std::size_t n : {0, 1, 2, 7, 8, 9, 15, 16, 17, 33}) {
+    INFO("batch of " << n);
+    CHECK(batch_differences(walk, std::vector<Query>(queries.begin() + 100, queries.begin() + 100 + std::ptrdiff_t(n))) == 0);
   }
+  // A domain with a pocket: hints in the pocket are finite cells outside the domain.
+  const Outside_pocket pocket{&dt};
+  const Segment_walk_3<DT, Outside_pocket> pocket_walk(dt, pocket);
+  std::vector<Query> pocket_queries(queries.begin(), queries.begin() + 1000);
+  std::size_t pocket_hints = 0;
+  for (Query& x : pocket_queries)
+    if (x.hint != DT::Cell_handle() && !dt.is_infinite(x.hint) && !pocket(x.hint)) ++pocket_hints;
+  CHECK(pocket_hints > 20);
+  CHECK(batch_differences(pocket_walk, pocket_queries) == 0);
+
+  // A callback that throws ends the call; the walker stays usable.
+  std::size_t calls = 0;
+  struct Stop {};
+  CHECK_THROWS_AS(walk.fast_batch(queries,
+                                  [&](std::size_t, const Piece&) {
+                                    if (++calls == 500) throw Stop();
+                                  }),
+                  Stop);
+  CHECK(calls == 500);
+  CHECK(batch_differences(walk, std::vector<Query>(queries.begin(), queries.begin() + 200)) == 0);
+
   // A non-finite point is reported, with its query, before any output.
   std::vector<Query> bad(queries.begin(), queries.begin() + 100);
   bad[97].p = DT::Point(0.5, std::numeric_limits<double>::quiet_NaN(), 0.5);
-  std::size_t calls = 0;
-  try {
-    walk.batch(bad, [&](std::size_t, const Piece&) { ++calls; });
-    FAIL("no exception");
-  } catch (const std::invalid_argument& e) {
-    CHECK(std::string(e.what()).find("query 97") != std::string::npos);
+  calls = 0;
+  for (const bool fast : {false, true}) {
+    try {
+      if (fast) walk.fast_batch(bad, [&](std::size_t, const Piece&) { ++calls; });
+      else walk.batch(bad, [&](std::size_t, const Piece&) { ++calls; });
+      FAIL("no exception");
+    } catch (const std::invalid_argument& e) {
+      CHECK(std::string(e.what()).find("query 97") != std::string::npos);
+    }
   }
   CHECK(calls == 0);
 }

@@ -318,24 +318,37 @@ public:
   ///
   /// `f(i, piece)` is called for every piece of query `i`. The pieces of one
   /// query come in order along its segment; the pieces of different queries
-  /// are interleaved, in an order that depends only on the input. All the
-  /// points are checked before any piece is reported.
-  /// \tparam QueryRange a random-access range of `Query` (`size()` and `operator[]`)
+  /// are interleaved, in an order that depends only on the input. Every
+  /// query is complete when the call returns (there is no per-query "done"
+  /// signal). All the points are checked before any piece is reported.
+  ///
+  /// Preconditions: the queries do not change during the call (the walk
+  /// reads them ahead of their turn), and every hint is null or a cell
+  /// handle of this walker's triangulation.
+  /// \tparam QueryRange a range with `size()` and `operator[](std::size_t)`
+  ///         whose elements have the members `q`, `p` (`Point`) and `hint`
+  ///         (`Cell_handle`), such as `std::vector<Query>`
   /// \tparam PieceCallback callable as `f(std::size_t i, const Piece& piece)`
   /// \param queries the segments and their hints
   /// \param f receives the pieces
   /// \throws std::invalid_argument if a coordinate is not finite (naming the query), before any output
+  /// \throws std::logic_error if a walk exceeds its step bound (an invalid
+  ///         triangulation; the message names the query). This, and any
+  ///         exception thrown by `f`, ends the call: the queries in progress
+  ///         (up to 8) have then received part of their pieces, and the
+  ///         later ones none.
   template <class QueryRange, class PieceCallback>
   void fast_batch(const QueryRange& queries, PieceCallback&& f) const {
     run_batch<false>(queries, f);
   }
 
   /// Batch full output: as `fast_batch()`, with the pieces of `operator()`.
-  /// \tparam QueryRange a random-access range of `Query` (`size()` and `operator[]`)
+  /// \tparam QueryRange as for `fast_batch()`
   /// \tparam PieceCallback callable as `f(std::size_t i, const Piece& piece)`
   /// \param queries the segments and their hints
   /// \param f receives the pieces
   /// \throws std::invalid_argument if a coordinate is not finite (naming the query), before any output
+  /// \throws std::logic_error as for `fast_batch()`
   template <class QueryRange, class PieceCallback>
   void batch(const QueryRange& queries, PieceCallback&& f) const {
     run_batch<true>(queries, f);
@@ -408,6 +421,7 @@ private:
     double E = 0, Er = 0;
     std::size_t steps = 0;
     std::size_t max_steps;
+    std::size_t query = std::size_t(-1); // index in a batch, for messages
     // gap search: candidates sorted by the exact parameter of their first point
     bool candidates_ready = false;
     std::vector<std::pair<EFT, std::size_t>> candidates;
@@ -423,8 +437,9 @@ private:
       if (++steps > max_steps) {
         std::ostringstream os;
         os.precision(17);
-        os << "Segment_walk_3: step bound exceeded on the segment (" << q << ") -> (" << p
-           << "); the triangulation is probably not valid";
+        os << "Segment_walk_3: step bound exceeded on the segment ";
+        if (query != std::size_t(-1)) os << "of query " << query << " ";
+        os << "(" << q << ") -> (" << p << "); the triangulation is probably not valid";
         throw std::logic_error(os.str());
       }
     }
@@ -573,13 +588,14 @@ private:
       while (next < n) {
         const std::size_t i = next++;
         prefetch_ahead(i);
-        const Query& qu = queries[i];
+        const auto& qu = queries[i];
         Sk sink{this, It{&f, i}};
         if (qu.q == qu.p) {
           *sink.out++ = make_piece(locate_simplex(qu.q, qu.hint), 0.0, 1.0);
           continue;
         }
         Ctx& x = L.x.emplace(qu.q, qu.p, max_steps_);
+        x.query = i;
         const std::uint32_t ci = ring[i % ring_n];
         L.st = Array_state();
         int k;
@@ -1061,6 +1077,9 @@ private:
     {
       x.tick();
       int k = j;
+      // Over the exit facet: G = sum mu rho, and for its error bound and the
+      // parameter, sum mu, sum |rho| and sum mu |rho|.
+      double G, sum_mu, sum_rho, sum_mu_rho;
       if (!cur.have_exit) {
         const std::array<int, 3>& f = internal::walk_inner_facet(j);
         Vertex_data& d = st.at(j);
@@ -1105,20 +1124,38 @@ private:
         k = f[e];
         const int ia = int(e == 0), ib = 2 - int(e == 2); // positions of the two vertices kept
         const int pos[3] = {st.slot(f[0]), st.slot(f[1]), st.slot(f[2])};
-        d.mu = st.pool[pos[e]].mu;
-        st.pool[pos[ia]].mu = std::fabs(v[ib]);
-        st.pool[pos[ib]].mu = std::fabs(v[ia]);
+        // The exit facet is d and the two entry vertices kept, the kept ones
+        // with the weights |v| of each other's positions: the sums for each
+        // of the three possible exits are formed while the exit is being
+        // chosen, and the exit picks one (reading them back from the pool,
+        // just written at positions that depend on the exit, would wait).
+        const double av[3] = {std::fabs(v[0]), std::fabs(v[1]), std::fabs(v[2])};
+        const double rh[3] = {A.rho, B.rho, C.rho}, ar[3] = {std::fabs(A.rho), std::fabs(B.rho), std::fabs(C.rho)};
+        const double mu_in[3] = {A.mu, B.mu, C.mu};
+        const double kept_g[3] = {av[2] * rh[1] + av[1] * rh[2], av[2] * rh[0] + av[0] * rh[2], av[1] * rh[0] + av[0] * rh[1]};
+        const double kept_mu[3] = {av[1] + av[2], av[0] + av[2], av[0] + av[1]};
+        const double kept_rho[3] = {ar[1] + ar[2], ar[0] + ar[2], ar[0] + ar[1]};
+        const double kept_mu_rho[3] = {av[2] * ar[1] + av[1] * ar[2], av[2] * ar[0] + av[0] * ar[2], av[1] * ar[0] + av[0] * ar[1]};
+        const double md = mu_in[e];
+        G = md * d.rho + kept_g[e];
+        sum_mu = md + kept_mu[e];
+        sum_rho = std::fabs(d.rho) + kept_rho[e];
+        sum_mu_rho = md * std::fabs(d.rho) + kept_mu_rho[e];
+        d.mu = md;
+        st.pool[pos[ia]].mu = av[ib];
+        st.pool[pos[ib]].mu = av[ia];
+      } else {
+        const std::array<int, 3>& g = internal::walk_inner_facet(k);
+        const Vertex_data &a = st.at(g[0]), &b = st.at(g[1]), &c = st.at(g[2]);
+        G = a.mu * a.rho + b.mu * b.rho + c.mu * c.rho;
+        sum_mu = a.mu + b.mu + c.mu;
+        sum_rho = std::fabs(a.rho) + std::fabs(b.rho) + std::fabs(c.rho);
+        sum_mu_rho = a.mu * std::fabs(a.rho) + b.mu * std::fabs(b.rho) + c.mu * std::fabs(c.rho);
       }
       // Exit facet (g0, g1, g2), the cell on its positive side.
       const std::array<int, 3>& g = internal::walk_inner_facet(k);
-      const Vertex_data &a = st.at(g[0]), &b = st.at(g[1]), &c = st.at(g[2]);
-      const double m0 = a.mu, m1 = b.mu, m2 = c.mu;
-      const double G = m0 * a.rho + m1 * b.rho + m2 * c.rho;
       // |G~ - G| <= sum E |rho~| + (|mu~| + E) Er + 3.5 u |mu~ rho~| (see above), plus a floor for underflow.
-      const double err = 1.01 * (x.E * (std::fabs(a.rho) + std::fabs(b.rho) + std::fabs(c.rho)) +
-                                 x.Er * (m0 + m1 + m2 + 3 * x.E) +
-                                 4e-16 * (m0 * std::fabs(a.rho) + m1 * std::fabs(b.rho) + m2 * std::fabs(c.rho))) +
-                         1e-300;
+      const double err = 1.01 * (x.E * sum_rho + x.Er * (sum_mu + 3 * x.E) + 4e-16 * sum_mu_rho) + 1e-300;
       int op = G > err ? 1 : G < -err ? -1 : 2;
       if (op == 2) op = int(orient4(array_point(r->v[g[0]]), array_point(r->v[g[1]]), array_point(r->v[g[2]]), x.p));
       if (op >= 0) {
@@ -1128,7 +1165,7 @@ private:
         return false;
       }
       // (A denominator that underflows on a tiny cell: the plane formula.)
-      const double den = (m0 + m1 + m2) * x.dd;
+      const double den = sum_mu * x.dd;
       const double t_out = std::isnormal(den) ? clamp_t(1.0 + G / den, t_in)
                                               : t_of(x, Simplex{cells_->cell_handles[ci], 15u & ~(1u << k)}, t_in);
       sink(ci, 15u, t_in, t_out, false);
