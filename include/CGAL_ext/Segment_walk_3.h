@@ -427,11 +427,24 @@ private:
     std::vector<std::pair<EFT, std::size_t>> candidates;
     // star enumeration
     std::vector<Cell_handle> visited, stack;
-    Ctx(const Point& q_, const Point& p_, std::size_t ms) : q(q_), p(p_), max_steps(ms) {
+    Ctx(const Point& q_, const Point& p_, std::size_t ms) : max_steps(ms) { reset(q_, p_); }
+    // The state at the start of the segment (q_, p_), keeping the vectors'
+    // memory (a batch reuses one Ctx per lane).
+    void reset(const Point& q_, const Point& p_) {
+      q = q_;
+      p = p_;
       qx = CGAL::to_double(q.x()); qy = CGAL::to_double(q.y()); qz = CGAL::to_double(q.z());
       dx = CGAL::to_double(p.x()) - qx; dy = CGAL::to_double(p.y()) - qy; dz = CGAL::to_double(p.z()) - qz;
       dd = dx * dx + dy * dy + dz * dz;
       px = CGAL::to_double(p.x()); py = CGAL::to_double(p.y()); pz = CGAL::to_double(p.z());
+      fast = false;
+      E = Er = 0;
+      steps = 0;
+      query = std::size_t(-1);
+      candidates_ready = false;
+      candidates.clear();
+      visited.clear();
+      stack.clear();
     }
     void tick() {
       if (++steps > max_steps) {
@@ -552,36 +565,44 @@ private:
       Array_position cur{};
     };
     std::array<Lane, lanes_n> lanes;
-    // A query's start reads its hint cell, the cell's vertices, the record
-    // index and the record: they are requested from memory in two stages,
-    // 2 * lanes_n and lanes_n queries ahead, and the record index found in
-    // the second is kept in a ring for the start. (The ring store also keeps
-    // the compiler from deleting this lambda's calls: with prefetches alone
-    // it is "pure", and GCC 12 drops calls to pure functions.)
-    constexpr std::size_t ring_n = 2 * lanes_n;
-    std::array<std::uint32_t, ring_n> ring;
-    auto prefetch_ahead = [&](std::size_t i) {
-      if (i + 2 * lanes_n < n) {
-        const Cell_handle c = queries[i + 2 * lanes_n].hint;
-        const std::uint32_t* e = cells_->index_entry(c);
+    // A query's start reads the record index of its hint (from the hint's
+    // address alone), the record and its four vertices: they are requested
+    // from memory in three stages, 3, 2 and 1 times lanes_n queries ahead,
+    // each stage reading what the previous one requested; the table entries
+    // and record indices are kept in rings for the next stages. (The ring
+    // stores also keep the compiler from deleting this lambda's calls: with
+    // prefetches alone it is "pure", and GCC 12 drops calls to pure
+    // functions.)
+    constexpr std::size_t ring_n = 4 * lanes_n;
+    std::array<const std::uint32_t*, ring_n> entry;
+    std::array<std::uint32_t, ring_n> record;
+    auto read_entry = [&](std::size_t i) { return entry[i % ring_n] ? *entry[i % ring_n] : Cell_array::outside; };
+    auto stage = [&](std::size_t i, int s) {
+      if (i >= n) return;
+      if (s == 0) {
+        entry[i % ring_n] = cells_->index_entry(queries[i].hint);
 #if defined(__GNUC__)
-        if (c != Cell_handle()) __builtin_prefetch(&*c);
-        if (e) __builtin_prefetch(e);
+        if (entry[i % ring_n]) __builtin_prefetch(entry[i % ring_n]);
 #endif
-      }
-      if (i + lanes_n < n) {
-        const Cell_handle c = queries[i + lanes_n].hint;
-        const std::uint32_t ci = cells_->index(c);
-        ring[(i + lanes_n) % ring_n] = ci;
+      } else if (s == 1) {
+        record[i % ring_n] = read_entry(i);
 #if defined(__GNUC__)
-        if (ci != Cell_array::outside) {
-          __builtin_prefetch(&cells_->records[ci]);
-          for (int l = 0; l < 4; ++l) __builtin_prefetch(&c->vertex(l)->point());
-        }
+        if (record[i % ring_n] != Cell_array::outside) __builtin_prefetch(&cells_->records[record[i % ring_n]]);
+#endif
+      } else {
+#if defined(__GNUC__)
+        if (record[i % ring_n] != Cell_array::outside)
+          for (int l = 0; l < 4; ++l) __builtin_prefetch(cells_->point(cells_->records[record[i % ring_n]].v[l]));
 #endif
       }
     };
-    for (std::size_t i = 0; i < lanes_n && i < n; ++i) ring[i] = cells_->index(queries[i].hint);
+    auto prefetch_ahead = [&](std::size_t i) {
+      stage(i + 3 * lanes_n, 0);
+      stage(i + 2 * lanes_n, 1);
+      stage(i + lanes_n, 2);
+    };
+    for (std::size_t i = 0; i < 3 * lanes_n; ++i) stage(i, 0);
+    for (std::size_t i = 0; i < 2 * lanes_n; ++i) stage(i, 1);
     std::size_t next = 0;
     // Starts queries until one is in the loop, in lane L; false if none is left.
     auto start = [&](Lane& L) {
@@ -594,12 +615,14 @@ private:
           *sink.out++ = make_piece(locate_simplex(qu.q, qu.hint), 0.0, 1.0);
           continue;
         }
-        Ctx& x = L.x.emplace(qu.q, qu.p, max_steps_);
+        if (L.x) L.x->reset(qu.q, qu.p);
+        else L.x.emplace(qu.q, qu.p, max_steps_);
+        Ctx& x = *L.x;
         x.query = i;
-        const std::uint32_t ci = ring[i % ring_n];
-        L.st = Array_state();
+        const std::uint32_t ci = record[i % ring_n];
+        L.st.slots = Array_state().slots; // (array_enter writes every pool entry it reads)
         int k;
-        if (prepare_fast(x) && ci != Cell_array::outside && array_enter(x, qu.hint, ci, L.st, k)) {
+        if (prepare_fast(x) && ci != Cell_array::outside && array_enter(x, Cell_handle(), ci, L.st, k)) {
           L.i = i;
           L.cur = Array_position{&cells_->records[ci], ci, k, true, 0.0};
 #if defined(__GNUC__)
@@ -994,14 +1017,20 @@ private:
     return true;
   }
   // The set-up of array_start: the vertex data and the exit facet k.
+  // The vertices come from the triangulation's cell c, or (if c is null)
+  // from the record.
   bool array_enter(Ctx& x, Cell_handle c, std::uint32_t ci, Array_state& st, int& k) const {
+    if (c != Cell_handle()) {
 #if defined(__GNUC__)
-    __builtin_prefetch(&cells_->records[ci]);
+      __builtin_prefetch(&cells_->records[ci]);
 #endif
-    for (int l = 0; l < 4; ++l) {
-      const Point& a = pt(c, l);
-      const double xyz[3] = {CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z())};
-      load_vertex(x, xyz, st.pool[l]);
+      for (int l = 0; l < 4; ++l) {
+        const Point& a = pt(c, l);
+        const double xyz[3] = {CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z())};
+        load_vertex(x, xyz, st.pool[l]);
+      }
+    } else {
+      for (int l = 0; l < 4; ++l) load_vertex(x, cells_->records[ci].v[l], st.pool[l]);
     }
     const Vertex_data* P = st.pool;
     // q strictly inside: orientation(g0, g1, g2, q) = -sign det[g0 - q, g1 - q, g2 - q] > 0.
