@@ -185,6 +185,10 @@ inline int walk_popcount(unsigned m) { return int(m & 1u) + int((m >> 1) & 1u) +
 /// returns zero and handled by an exact general step over the star of the
 /// current simplex.
 ///
+/// `fast_batch()` and `batch()` walk many segments in one call, interleaving
+/// up to 8 walks step by step so that their waits for memory overlap; each
+/// segment gets exactly the pieces of a single call.
+///
 /// Infinite cells are never used geometrically, so the walk is valid on a
 /// `Tet_mesh_triangulation_3` of a non-convex domain, with several
 /// components, even touching along an edge or at a vertex. The re-entry
@@ -202,7 +206,10 @@ inline int walk_popcount(unsigned m) { return int(m & 1u) + int((m >> 1) & 1u) +
 ///         or `Tet_mesh_triangulation_3`) whose geometric traits are a CGAL
 ///         kernel with double coordinates and exact predicates (e.g.
 ///         `Exact_predicates_inexact_constructions_kernel`); its finite cells
-///         must be positively oriented.
+///         must be positively oriented, and its data structure valid
+///         (neighbouring cells orient their common facet oppositely, as
+///         `is_valid()` checks and `build_triangulation_from_tets()`
+///         ensures).
 /// \tparam Domain_predicate a unary predicate on `Cell_handle`, true for the
 ///         domain cells. Infinite cells are never in the domain.
 template <class Triangulation, class Domain_predicate = Is_finite_cell<Triangulation>>
