@@ -15,10 +15,13 @@
 
 #include <catch2/catch.hpp>
 
+#include <tbb/global_control.h>
+
 #include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <memory>
 #include <random>
 #include <set>
 #include <sstream>
@@ -627,6 +630,37 @@ TEST_CASE("cell array of the walk: handle index and adjacency copy", "[segment_w
   for (DT::Cell_handle c : dt.all_cell_handles())
     if (dt.is_infinite(c)) CHECK(a.index(c) == a.outside);
   CHECK(a.index(DT::Cell_handle()) == a.outside);
+}
+
+TEST_CASE("cell array of the walk: the same with one thread and with all", "[segment_walk]") {
+  // Its construction runs in parallel: the arrays must not depend on it.
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<DT::Point> pts;
+  for (int i = 0; i < 30000; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
+  DT dt(pts.begin(), pts.end());
+  const auto in_domain = [&dt](DT::Cell_handle c) {
+    const auto g = CGAL::centroid(dt.tetrahedron(c));
+    return !(g.x() < 0.5 && g.y() < 0.5);
+  };
+  auto build_with = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+    return std::make_unique<internal::Walk_cell_array_3<DT>>(dt, in_domain);
+  };
+  const auto one = build_with(1);
+  const auto all = build_with(8);
+  REQUIRE(one->valid());
+  REQUIRE(one->records.size() == all->records.size());
+  REQUIRE(one->vertices.size() == all->vertices.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < one->records.size(); ++i) {
+    const auto &a = one->records[i], &b = all->records[i];
+    for (int l = 0; l < 4; ++l) differ += a.v[l] != b.v[l] || a.n[l] != b.n[l];
+    differ += one->cell_handles[i] != all->cell_handles[i];
+  }
+  for (std::size_t i = 0; i < one->vertices.size(); ++i) differ += one->vertices[i].handle != all->vertices[i].handle;
+  for (DT::Cell_handle c : dt.all_cell_handles()) differ += one->index(c) != all->index(c);
+  CHECK(differ == 0);
 }
 
 TEST_CASE("segment walk: tiny segments keep their parameters", "[segment_walk]") {

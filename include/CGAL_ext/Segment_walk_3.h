@@ -211,7 +211,9 @@ inline int walk_popcount(unsigned m) { return int(m & 1u) + int((m >> 1) & 1u) +
 ///         `is_valid()` checks and `build_triangulation_from_tets()`
 ///         ensures).
 /// \tparam Domain_predicate a unary predicate on `Cell_handle`, true for the
-///         domain cells. Infinite cells are never in the domain.
+///         domain cells. Infinite cells are never in the domain. The
+///         constructor calls it from several threads (TBB), so calls must
+///         not modify shared state.
 template <class Triangulation, class Domain_predicate = Is_finite_cell<Triangulation>>
 class Segment_walk_3 {
 public:

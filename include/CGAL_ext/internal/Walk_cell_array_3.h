@@ -11,6 +11,10 @@
 
 #include <CGAL/number_utils.h>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -150,15 +154,31 @@ public:
   /// \param in_domain the domain predicate
   template <class Domain_predicate>
   Walk_cell_array_3(const Tr& tr, const Domain_predicate& in_domain) {
-    // Domain cells, and the slot tables of cells and vertices.
-    std::vector<Cell_handle> domain;
-    for (auto c = tr.tds().cells_begin(); c != tr.tds().cells_end(); ++c) cell_index_.push_back(c);
-    cell_index_.finish();
-    std::vector<std::uint32_t> slot_to_domain(cell_index_.size(), outside);
+    // The heavy loops run in parallel (TBB): each writes its own entries,
+    // and the sort keys are unique, so the result does not depend on the
+    // number of threads.
+    // Domain cells, and the slot tables of cells and vertices. (The domain
+    // predicate is called concurrently, as during concurrent walks.)
+    std::vector<Cell_handle> all;
+    all.reserve(tr.tds().number_of_cells());
     for (auto c = tr.tds().cells_begin(); c != tr.tds().cells_end(); ++c) {
-      if (tr.is_infinite(c) || !in_domain(Cell_handle(c))) continue;
-      slot_to_domain[cell_index_(c)] = std::uint32_t(domain.size());
-      domain.push_back(c);
+      cell_index_.push_back(c);
+      all.push_back(c);
+    }
+    cell_index_.finish();
+    std::vector<std::uint32_t> all_slot(all.size());
+    std::vector<std::uint8_t> keep(all.size());
+    parallel(all.size(), [&](std::size_t i) {
+      all_slot[i] = cell_index_(all[i]);
+      keep[i] = !tr.is_infinite(all[i]) && in_domain(all[i]);
+    });
+    std::vector<Cell_handle> domain;
+    domain.reserve(all.size());
+    std::vector<std::uint32_t> slot_to_domain(cell_index_.size(), outside);
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      if (!keep[i]) continue;
+      slot_to_domain[all_slot[i]] = std::uint32_t(domain.size());
+      domain.push_back(all[i]);
     }
     if (domain.size() >= (std::size_t(1) << 30)) return; // links keep 30 bits for the index; not valid()
     Handle_index<Vertex_handle> vertex_slots;
@@ -173,11 +193,13 @@ public:
       hi[d] = -std::numeric_limits<double>::infinity();
     }
     std::vector<std::array<std::int32_t, 4>> cell_vertices(domain.size()); // vertex slots, then ids
+    parallel(domain.size(), [&](std::size_t ci) {
+      for (int i = 0; i < 4; ++i) cell_vertices[ci][i] = std::int32_t(vertex_slots(domain[ci]->vertex(i)));
+    });
     for (std::size_t ci = 0; ci < domain.size(); ++ci)
       for (int i = 0; i < 4; ++i) {
         const Cell_handle c = domain[ci];
-        const std::uint32_t slot = vertex_slots(c->vertex(i));
-        cell_vertices[ci][i] = std::int32_t(slot);
+        const std::uint32_t slot = std::uint32_t(cell_vertices[ci][i]);
         std::uint32_t& id = vertex_id[slot];
         if (id != outside) continue;
         id = std::uint32_t(used.size());
@@ -191,8 +213,8 @@ public:
         used.push_back(r);
       }
     std::vector<std::pair<std::uint64_t, std::uint32_t>> key(used.size());
-    for (std::size_t i = 0; i < used.size(); ++i) key[i] = {morton(used[i].xyz), std::uint32_t(i)};
-    std::sort(key.begin(), key.end());
+    parallel(used.size(), [&](std::size_t i) { key[i] = {morton(used[i].xyz), std::uint32_t(i)}; });
+    tbb::parallel_sort(key.begin(), key.end());
     std::vector<std::uint32_t> order(used.size());
     vertices.resize(used.size());
     for (std::size_t i = 0; i < key.size(); ++i) {
@@ -201,26 +223,28 @@ public:
     }
     for (std::uint32_t& id : vertex_id)
       if (id != outside) id = order[id];
-    for (auto& cv : cell_vertices)
-      for (std::int32_t& k : cv) k = std::int32_t(vertex_id[std::size_t(k)]);
+    parallel(cell_vertices.size(), [&](std::size_t ci) {
+      for (std::int32_t& k : cell_vertices[ci]) k = std::int32_t(vertex_id[std::size_t(k)]);
+    });
 
     // Cells in Morton order of their centroids.
     key.resize(domain.size());
-    for (std::size_t i = 0; i < domain.size(); ++i) {
+    parallel(domain.size(), [&](std::size_t i) {
       double g[3] = {0, 0, 0};
       for (int l = 0; l < 4; ++l)
         for (int d = 0; d < 3; ++d) g[d] += 0.25 * vertices[std::size_t(cell_vertices[i][l])].xyz[d];
       key[i] = {morton(g), std::uint32_t(i)};
-    }
-    std::sort(key.begin(), key.end());
+    });
+    tbb::parallel_sort(key.begin(), key.end());
     order.assign(domain.size(), 0);
-    for (std::size_t i = 0; i < key.size(); ++i) order[key[i].second] = std::uint32_t(i);
+    parallel(key.size(), [&](std::size_t i) { order[key[i].second] = std::uint32_t(i); });
     slot_to_record_.resize(slot_to_domain.size());
-    for (std::size_t i = 0; i < slot_to_domain.size(); ++i)
+    parallel(slot_to_domain.size(), [&](std::size_t i) {
       slot_to_record_[i] = slot_to_domain[i] == outside ? outside : order[slot_to_domain[i]];
+    });
     records.resize(domain.size());
     cell_handles.resize(domain.size());
-    for (std::size_t i = 0; i < domain.size(); ++i) {
+    parallel(domain.size(), [&](std::size_t i) {
       const Cell_handle c = domain[i];
       const std::uint32_t ci = order[i];
       cell_handles[ci] = c;
@@ -229,12 +253,12 @@ public:
         r.v[l] = cell_vertices[i][l];
         r.n[l] = index(c->neighbor(l));
       }
-    }
+    });
     // Mirror indices from the records of the neighbours (in Morton order,
     // mostly in cache) rather than from the triangulation's cells: first
     // find them all with the plain indices, then pack the links.
     std::vector<std::uint8_t> mirror(4 * records.size(), 0);
-    for (std::size_t ci = 0; ci < records.size(); ++ci)
+    parallel(records.size(), [&](std::size_t ci) {
       for (int l = 0; l < 4; ++l) {
         const std::uint32_t ni = records[ci].n[l];
         if (ni == outside) continue;
@@ -243,9 +267,11 @@ public:
         while (m < 3 && o.n[m] != ci) ++m;
         mirror[4 * ci + std::size_t(l)] = m;
       }
-    for (std::size_t ci = 0; ci < records.size(); ++ci)
+    });
+    parallel(records.size(), [&](std::size_t ci) {
       for (int l = 0; l < 4; ++l)
         if (records[ci].n[l] != outside) records[ci].n[l] = (records[ci].n[l] << 2) | mirror[4 * ci + std::size_t(l)];
+    });
   }
 
   /// Whether the arrays are usable (false if the domain is empty or has 2^30 cells or more).
@@ -278,6 +304,13 @@ public:
   std::array<double, 3> lo{}, hi{};     ///< bounding box of `vertices`
 
 private:
+  // f(i) for i in [0, n), in parallel chunks.
+  template <class F>
+  static void parallel(std::size_t n, const F& f) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
+    });
+  }
   // Interleaves the 21 low bits of x with two zero bits each.
   static std::uint64_t spread_bits(std::uint64_t x) {
     x &= 0x1fffffULL;
