@@ -20,12 +20,14 @@
 // containing q, located beforehand and not timed), single-threaded. The runs
 // are interleaved in 5 rounds and the best thread CPU time of each is kept.
 // The walker's construction (its cell array) is timed separately. Both
-// forms of our walk hand each piece to the same counting code (an output
-// iterator for the single calls, a callback for the batches).
+// forms of our walk hand each piece to the same counting code (through an
+// output iterator for the single calls, as a callback for the batches).
 #include <CGAL_ext/Segment_walk_3.h>
 
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <boost/iterator/function_output_iterator.hpp>
 
 #include <algorithm>
 #include <array>
@@ -95,23 +97,6 @@ void interleaved(int rounds, bool cold, const std::array<std::function<std::size
       best[i] = std::min(best[i], thread_seconds() - t);
     }
 }
-
-// Output iterator that counts the cells among the pieces it receives.
-struct Cell_counter {
-  using iterator_category = std::output_iterator_tag;
-  using value_type = void;
-  using difference_type = std::ptrdiff_t;
-  using pointer = void;
-  using reference = void;
-  std::size_t* cells;
-  Cell_counter& operator*() { return *this; }
-  Cell_counter& operator++() { return *this; }
-  Cell_counter operator++(int) { return *this; }
-  Cell_counter& operator=(const Piece& x) {
-    *cells += x.dimension == 3;
-    return *this;
-  }
-};
 
 } // namespace
 
@@ -185,9 +170,10 @@ int main(int argc, char** argv) {
     auto per_call = [&](bool full) {
       return [&, full] {
         std::size_t n_cells = 0;
+        auto count = boost::make_function_output_iterator([&](const Piece& y) { n_cells += y.dimension == 3; });
         for (const Segment& x : segs) {
-          if (full) walk(x.q, x.p, Cell_counter{&n_cells}, x.hint);
-          else walk.fast(x.q, x.p, Cell_counter{&n_cells}, x.hint);
+          if (full) walk(x.q, x.p, count, x.hint);
+          else walk.fast(x.q, x.p, count, x.hint);
         }
         return n_cells;
       };

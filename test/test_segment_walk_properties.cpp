@@ -39,6 +39,26 @@ using Mesh_tr = Tet_mesh_triangulation_3<K>;
 using Mesh_walk = Segment_walk_3<Mesh_tr, Is_tet_mesh_domain_cell>;
 using DT = CGAL::Delaunay_triangulation_3<K>;
 
+// The Delaunay triangulation of n points drawn uniformly in the unit cube
+// with u and rng (which the caller may go on using).
+template <class Rng>
+DT random_delaunay(int n, Rng& rng, std::uniform_real_distribution<double>& u) {
+  std::vector<DT::Point> pts;
+  for (int i = 0; i < n; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
+  return DT(pts.begin(), pts.end());
+}
+
+// Domain of a Delaunay triangulation: the cells whose centroid is not in the
+// column x < 0.5, y < 0.5.
+struct Outside_column {
+  const DT* dt;
+  bool operator()(DT::Cell_handle c) const {
+    const auto g = CGAL::centroid(dt->tetrahedron(c));
+    return !(g.x() < 0.5 && g.y() < 0.5);
+  }
+};
+
+
 template <class Tr>
 std::string describe(const std::vector<Segment_walk_piece_3<Tr>>& w) {
   std::ostringstream os;
@@ -411,9 +431,7 @@ TEST_CASE("segment walk: thousands of exactly degenerate segments on Kuhn grids"
 TEST_CASE("segment walk: Delaunay of random points, against CGAL's traverser on generic segments", "[segment_walk]") {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(0, 1);
-  std::vector<DT::Point> pts;
-  for (int i = 0; i < 3000; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
-  DT dt(pts.begin(), pts.end());
+  DT dt = random_delaunay(3000, rng, u);
   const Segment_walk_3<DT> walk(dt);
   std::size_t compared = 0;
   for (int i = 0; i < 1000; ++i) {
@@ -446,9 +464,7 @@ TEST_CASE("segment walk: Delaunay of random points, against CGAL's traverser on 
 TEST_CASE("segment walk: Delaunay with an excluded pocket", "[segment_walk]") {
   std::mt19937 rng(99);
   std::uniform_real_distribution<double> u(0, 1);
-  std::vector<DT::Point> pts;
-  for (int i = 0; i < 2000; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
-  DT dt(pts.begin(), pts.end());
+  DT dt = random_delaunay(2000, rng, u);
   // Domain: finite cells whose centroid is outside a ball: a cavity inside.
   const auto in_domain = [&dt](DT::Cell_handle c) {
     if (dt.is_infinite(c)) return false;
@@ -586,13 +602,8 @@ TEST_CASE("cell array of the walk: handle index and adjacency copy", "[segment_w
   // neighbours are links to outside.
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(0, 1);
-  std::vector<DT::Point> pts;
-  for (int i = 0; i < 3000; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
-  DT dt(pts.begin(), pts.end());
-  const auto in_domain = [&dt](DT::Cell_handle c) {
-    const auto g = CGAL::centroid(dt.tetrahedron(c));
-    return !(g.x() < 0.5 && g.y() < 0.5);
-  };
+  DT dt = random_delaunay(3000, rng, u);
+  const Outside_column in_domain{&dt};
   const internal::Walk_cell_array_3<DT> a(dt, in_domain);
   REQUIRE(a.valid());
   std::size_t n_domain = 0;
@@ -636,13 +647,8 @@ TEST_CASE("cell array of the walk: the same with one thread and with all", "[seg
   // Its construction runs in parallel: the arrays must not depend on it.
   std::mt19937_64 rng(9);
   std::uniform_real_distribution<double> u(0, 1);
-  std::vector<DT::Point> pts;
-  for (int i = 0; i < 30000; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
-  DT dt(pts.begin(), pts.end());
-  const auto in_domain = [&dt](DT::Cell_handle c) {
-    const auto g = CGAL::centroid(dt.tetrahedron(c));
-    return !(g.x() < 0.5 && g.y() < 0.5);
-  };
+  DT dt = random_delaunay(30000, rng, u);
+  const Outside_column in_domain{&dt};
   auto build_with = [&](int threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
     return std::make_unique<internal::Walk_cell_array_3<DT>>(dt, in_domain);
@@ -743,9 +749,7 @@ struct Outside_pocket {
 TEST_CASE("segment walk: batches give the per-segment pieces", "[segment_walk]") {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(0, 1);
-  std::vector<DT::Point> pts;
-  for (int i = 0; i < 20000; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
-  DT dt(pts.begin(), pts.end());
+  DT dt = random_delaunay(20000, rng, u);
   const Segment_walk_3<DT> walk(dt);
   using Query = Segment_walk_3<DT>::Query;
   using Piece = Segment_walk_piece_3<DT>;

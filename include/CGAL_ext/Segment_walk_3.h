@@ -17,6 +17,8 @@
 #include <CGAL/Exact_rational.h>
 #include <CGAL/Simple_cartesian.h>
 
+#include <boost/iterator/function_output_iterator.hpp>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -74,26 +76,6 @@ struct Segment_walk_query_3 {
 };
 
 namespace internal {
-
-// Output iterator that hands each piece to a callback f(i, piece), for the
-// pieces of query i of a batch walk.
-template <class F, class Piece>
-struct Walk_callback_iterator {
-  using iterator_category = std::output_iterator_tag;
-  using value_type = void;
-  using difference_type = std::ptrdiff_t;
-  using pointer = void;
-  using reference = void;
-  F* f;
-  std::size_t i;
-  Walk_callback_iterator& operator*() { return *this; }
-  Walk_callback_iterator& operator++() { return *this; }
-  Walk_callback_iterator operator++(int) { return *this; }
-  Walk_callback_iterator& operator=(const Piece& piece) {
-    (*f)(i, piece);
-    return *this;
-  }
-};
 
 // Vertex indices of facet i of a positively oriented cell, ordered so that
 // orientation(facet, vertex i) is positive (the cell is on the positive side).
@@ -550,8 +532,11 @@ private:
   // degenerate steps, gaps) runs to the end of its query as in run().
   template <bool Full, class QueryRange, class F>
   void run_batch(const QueryRange& queries, F& f) const {
-    using It = internal::Walk_callback_iterator<F, Piece>;
-    using Sk = Sink<Full, It>;
+    // The output iterator of query i hands its pieces to f(i, piece).
+    auto out_of = [&f](std::size_t i) {
+      return boost::make_function_output_iterator([&f, i](const Piece& piece) { f(i, piece); });
+    };
+    using Sk = Sink<Full, decltype(out_of(0))>;
     const char* what = Full ? "batch" : "fast_batch";
     const std::size_t n = queries.size();
     for (std::size_t i = 0; i < n; ++i) {
@@ -559,7 +544,7 @@ private:
       check_finite(queries[i].p, what, i);
     }
     if (!cells_) {
-      for (std::size_t i = 0; i < n; ++i) run<Full>(queries[i].q, queries[i].p, It{&f, i}, queries[i].hint);
+      for (std::size_t i = 0; i < n; ++i) run<Full>(queries[i].q, queries[i].p, out_of(i), queries[i].hint);
       return;
     }
     // 8 lanes: with the 5 prefetches of a step, enough loads in flight to
@@ -619,7 +604,7 @@ private:
         const std::size_t i = next++;
         prefetch_ahead(i);
         const auto& qu = queries[i];
-        Sk sink{this, It{&f, i}};
+        Sk sink{this, out_of(i)};
         if (qu.q == qu.p) {
           *sink.out++ = make_piece(locate_simplex(qu.q, qu.hint), 0.0, 1.0);
           continue;
@@ -650,7 +635,7 @@ private:
     while (active > 0)
       for (Lane& L : lanes) {
         if (!L.active) continue;
-        Sk sink{this, It{&f, L.i}};
+        Sk sink{this, out_of(L.i)};
         Next nx;
         if (array_step(*L.x, L.st, L.cur, nx, sink)) continue;
         finish(*L.x, nx, sink);
@@ -1112,135 +1097,133 @@ private:
     const std::uint32_t ci = cur.ci;
     const int j = cur.j;
     const double t_in = cur.t_in;
-    {
-      x.tick();
-      int k = j;
-      // Over the exit facet: G = sum mu rho, and for its error bound and the
-      // parameter, sum mu, sum |rho| and sum mu |rho|.
-      double G, sum_mu, sum_rho, sum_mu_rho;
-      if (!cur.have_exit) {
-        const std::array<int, 3>& f = internal::walk_inner_facet(j);
-        Vertex_data& d = st.at(j);
-        const Vertex_data& A = st.at(f[0]);
-        const Vertex_data& B = st.at(f[1]);
-        const Vertex_data& C = st.at(f[2]);
-        const double* xyz = cells_->point(r->v[j]);
-        d.w[0] = xyz[0] - x.qx;
-        d.w[1] = xyz[1] - x.qy;
-        d.w[2] = xyz[2] - x.qz;
-        // v_i = pi(d, f_i) = -pi(f_i, d): the u of the entry vertices are
-        // known, so the cross product of d is off the critical path.
-        const double v[3] = {-pi(A, d), -pi(B, d), -pi(C, d)};
-        finish_vertex(x, xyz, d);
-        // The segment enters through facet (f0, f1, f2) from its negative
-        // side; the plane (q, p, d) separates its vertices. With the three
-        // signs certified, the exit is chosen without a branch (the choice
-        // is random for the branch predictor); otherwise exact signs decide.
-        int e = -1; // position in f of the vertex left behind
-        if (std::min(std::fabs(v[0]), std::min(std::fabs(v[1]), std::fabs(v[2]))) > x.E) {
-          // v0 > 0: v1 < 0 -> f2, v1 > 0 -> f0; v0 < 0: v2 > 0 -> f1, v2 < 0 -> f0
-          const unsigned code = unsigned(v[0] > 0) | unsigned(v[1] > 0) << 1 | unsigned(v[2] > 0) << 2;
-          e = int((0x01210020u >> (4 * code)) & 3u);
-        } else {
-          const CGAL::Orientation sa = side(x, v[0], r->v[j], r->v[f[0]]);
-          if (sa == CGAL::POSITIVE) {
-            const CGAL::Orientation sb = side(x, v[1], r->v[j], r->v[f[1]]);
-            if (sb == CGAL::NEGATIVE) e = 2;
-            else if (sb == CGAL::POSITIVE) e = 0;
-          } else if (sa == CGAL::NEGATIVE) {
-            const CGAL::Orientation sc = side(x, v[2], r->v[j], r->v[f[2]]);
-            if (sc == CGAL::POSITIVE) e = 1;
-            else if (sc == CGAL::NEGATIVE) e = 0;
-          }
-          if (e < 0) { // through an edge or a vertex
-            nx = traverse_cell(x, cells_->cell_handles[ci], t_in, sink);
-            return false;
-          }
-        }
-        // Selections by index arithmetic: compilers turn conditional
-        // expressions here into branches, which the random exit mispredicts.
-        k = f[e];
-        const int ia = int(e == 0), ib = 2 - int(e == 2); // positions of the two vertices kept
-        const int pos[3] = {st.slot(f[0]), st.slot(f[1]), st.slot(f[2])};
-        // The exit facet is d and the two entry vertices kept, the kept ones
-        // with the weights |v| of each other's positions: the sums for each
-        // of the three possible exits are formed while the exit is being
-        // chosen, and the exit picks one (reading them back from the pool,
-        // just written at positions that depend on the exit, would wait).
-        const double av[3] = {std::fabs(v[0]), std::fabs(v[1]), std::fabs(v[2])};
-        const double rh[3] = {A.rho, B.rho, C.rho}, ar[3] = {std::fabs(A.rho), std::fabs(B.rho), std::fabs(C.rho)};
-        const double mu_in[3] = {A.mu, B.mu, C.mu};
-        const double kept_g[3] = {av[2] * rh[1] + av[1] * rh[2], av[2] * rh[0] + av[0] * rh[2], av[1] * rh[0] + av[0] * rh[1]};
-        const double kept_mu[3] = {av[1] + av[2], av[0] + av[2], av[0] + av[1]};
-        const double kept_rho[3] = {ar[1] + ar[2], ar[0] + ar[2], ar[0] + ar[1]};
-        const double kept_mu_rho[3] = {av[2] * ar[1] + av[1] * ar[2], av[2] * ar[0] + av[0] * ar[2], av[1] * ar[0] + av[0] * ar[1]};
-        const double md = mu_in[e];
-        G = md * d.rho + kept_g[e];
-        sum_mu = md + kept_mu[e];
-        sum_rho = std::fabs(d.rho) + kept_rho[e];
-        sum_mu_rho = md * std::fabs(d.rho) + kept_mu_rho[e];
-        d.mu = md;
-        st.pool[pos[ia]].mu = av[ib];
-        st.pool[pos[ib]].mu = av[ia];
+    x.tick();
+    int k = j;
+    // Over the exit facet: G = sum mu rho, and for its error bound and the
+    // parameter, sum mu, sum |rho| and sum mu |rho|.
+    double G, sum_mu, sum_rho, sum_mu_rho;
+    if (!cur.have_exit) {
+      const std::array<int, 3>& f = internal::walk_inner_facet(j);
+      Vertex_data& d = st.at(j);
+      const Vertex_data& A = st.at(f[0]);
+      const Vertex_data& B = st.at(f[1]);
+      const Vertex_data& C = st.at(f[2]);
+      const double* xyz = cells_->point(r->v[j]);
+      d.w[0] = xyz[0] - x.qx;
+      d.w[1] = xyz[1] - x.qy;
+      d.w[2] = xyz[2] - x.qz;
+      // v_i = pi(d, f_i) = -pi(f_i, d): the u of the entry vertices are
+      // known, so the cross product of d is off the critical path.
+      const double v[3] = {-pi(A, d), -pi(B, d), -pi(C, d)};
+      finish_vertex(x, xyz, d);
+      // The segment enters through facet (f0, f1, f2) from its negative
+      // side; the plane (q, p, d) separates its vertices. With the three
+      // signs certified, the exit is chosen without a branch (the choice
+      // is random for the branch predictor); otherwise exact signs decide.
+      int e = -1; // position in f of the vertex left behind
+      if (std::min(std::fabs(v[0]), std::min(std::fabs(v[1]), std::fabs(v[2]))) > x.E) {
+        // v0 > 0: v1 < 0 -> f2, v1 > 0 -> f0; v0 < 0: v2 > 0 -> f1, v2 < 0 -> f0
+        const unsigned code = unsigned(v[0] > 0) | unsigned(v[1] > 0) << 1 | unsigned(v[2] > 0) << 2;
+        e = int((0x01210020u >> (4 * code)) & 3u);
       } else {
-        const std::array<int, 3>& g = internal::walk_inner_facet(k);
-        const Vertex_data &a = st.at(g[0]), &b = st.at(g[1]), &c = st.at(g[2]);
-        G = a.mu * a.rho + b.mu * b.rho + c.mu * c.rho;
-        sum_mu = a.mu + b.mu + c.mu;
-        sum_rho = std::fabs(a.rho) + std::fabs(b.rho) + std::fabs(c.rho);
-        sum_mu_rho = a.mu * std::fabs(a.rho) + b.mu * std::fabs(b.rho) + c.mu * std::fabs(c.rho);
+        const CGAL::Orientation sa = side(x, v[0], r->v[j], r->v[f[0]]);
+        if (sa == CGAL::POSITIVE) {
+          const CGAL::Orientation sb = side(x, v[1], r->v[j], r->v[f[1]]);
+          if (sb == CGAL::NEGATIVE) e = 2;
+          else if (sb == CGAL::POSITIVE) e = 0;
+        } else if (sa == CGAL::NEGATIVE) {
+          const CGAL::Orientation sc = side(x, v[2], r->v[j], r->v[f[2]]);
+          if (sc == CGAL::POSITIVE) e = 1;
+          else if (sc == CGAL::NEGATIVE) e = 0;
+        }
+        if (e < 0) { // through an edge or a vertex
+          nx = traverse_cell(x, cells_->cell_handles[ci], t_in, sink);
+          return false;
+        }
       }
-      // Exit facet (g0, g1, g2), the cell on its positive side.
+      // Selections by index arithmetic: compilers turn conditional
+      // expressions here into branches, which the random exit mispredicts.
+      k = f[e];
+      const int ia = int(e == 0), ib = 2 - int(e == 2); // positions of the two vertices kept
+      const int pos[3] = {st.slot(f[0]), st.slot(f[1]), st.slot(f[2])};
+      // The exit facet is d and the two entry vertices kept, the kept ones
+      // with the weights |v| of each other's positions: the sums for each
+      // of the three possible exits are formed while the exit is being
+      // chosen, and the exit picks one (reading them back from the pool,
+      // just written at positions that depend on the exit, would wait).
+      const double av[3] = {std::fabs(v[0]), std::fabs(v[1]), std::fabs(v[2])};
+      const double rh[3] = {A.rho, B.rho, C.rho}, ar[3] = {std::fabs(A.rho), std::fabs(B.rho), std::fabs(C.rho)};
+      const double mu_in[3] = {A.mu, B.mu, C.mu};
+      const double kept_g[3] = {av[2] * rh[1] + av[1] * rh[2], av[2] * rh[0] + av[0] * rh[2], av[1] * rh[0] + av[0] * rh[1]};
+      const double kept_mu[3] = {av[1] + av[2], av[0] + av[2], av[0] + av[1]};
+      const double kept_rho[3] = {ar[1] + ar[2], ar[0] + ar[2], ar[0] + ar[1]};
+      const double kept_mu_rho[3] = {av[2] * ar[1] + av[1] * ar[2], av[2] * ar[0] + av[0] * ar[2], av[1] * ar[0] + av[0] * ar[1]};
+      const double md = mu_in[e];
+      G = md * d.rho + kept_g[e];
+      sum_mu = md + kept_mu[e];
+      sum_rho = std::fabs(d.rho) + kept_rho[e];
+      sum_mu_rho = md * std::fabs(d.rho) + kept_mu_rho[e];
+      d.mu = md;
+      st.pool[pos[ia]].mu = av[ib];
+      st.pool[pos[ib]].mu = av[ia];
+    } else {
       const std::array<int, 3>& g = internal::walk_inner_facet(k);
-      // |G~ - G| <= sum E |rho~| + (|mu~| + E) Er + 3.5 u |mu~ rho~| (see above), plus a floor for underflow.
-      const double err = 1.01 * (x.E * sum_rho + x.Er * (sum_mu + 3 * x.E) + 4e-16 * sum_mu_rho) + 1e-300;
-      int op = G > err ? 1 : G < -err ? -1 : 2;
-      if (op == 2) op = int(orient4(array_point(r->v[g[0]]), array_point(r->v[g[1]]), array_point(r->v[g[2]]), x.p));
-      if (op >= 0) {
-        sink(ci, 15u, t_in, 1.0, false);
-        if (op == 0) sink(ci, 15u & ~(1u << k), 1.0, 1.0, true);
-        nx = Next();
-        return false;
-      }
-      // (A denominator that underflows on a tiny cell: the plane formula.)
-      const double den = sum_mu * x.dd;
-      const double t_out = std::isnormal(den) ? clamp_t(1.0 + G / den, t_in)
-                                              : t_of(x, Simplex{cells_->cell_handles[ci], 15u & ~(1u << k)}, t_in);
-      sink(ci, 15u, t_in, t_out, false);
-      const std::uint32_t link = r->n[k];
-      if (link == Cell_array::outside) {
-        nx = Next{false, Simplex{cells_->cell_handles[ci], 15u & ~(1u << k)}, t_out, true};
-        return false;
-      }
-      sink(ci, 15u & ~(1u << k), t_out, t_out, true);
-      // Move to the neighbour n; its vertex opposite the shared facet takes
-      // the pool entry of the vertex k left behind.
-      const std::uint32_t ni = link >> 2;
-      const int m = int(link & 3u);
-      const typename Cell_array::Record* rn = &recs[ni];
-      // One comparison finds how the shared facet is rotated between the two
-      // cells (see walk_facet_map); without a branch, for the same reason.
-      const std::int32_t id0 = rn->v[internal::walk_inner_facet(m)[0]];
-      const unsigned rho = unsigned(r->v[g[1]] == id0) + 2u * unsigned(r->v[g[2]] == id0);
-      const unsigned map = internal::walk_facet_map[std::size_t((4 * k + m) * 3) + rho];
-      unsigned slots = 0;
-      for (int i = 0; i < 4; ++i) slots |= ((st.slots >> (2 * ((map >> (2 * i)) & 3u))) & 3u) << (2 * i);
-      st.slots = slots;
-#if defined(__GNUC__)
-      // Start loading the possible next records while this one is processed
-      // (all four, without a branch: the one back is in cache anyway).
-      for (int i = 0; i < 4; ++i) __builtin_prefetch(&recs[rn->n[i] == Cell_array::outside ? ni : rn->n[i] >> 2]);
-      // and the new vertex of the next step (a batch walk comes back to this
-      // segment only after steps of the others: it is loaded by then)
-      __builtin_prefetch(cells_->point(rn->v[m]));
-#endif
-      cur.r = rn;
-      cur.ci = ni;
-      cur.j = m;
-      cur.have_exit = false;
-      cur.t_in = t_out;
-      return true;
+      const Vertex_data &a = st.at(g[0]), &b = st.at(g[1]), &c = st.at(g[2]);
+      G = a.mu * a.rho + b.mu * b.rho + c.mu * c.rho;
+      sum_mu = a.mu + b.mu + c.mu;
+      sum_rho = std::fabs(a.rho) + std::fabs(b.rho) + std::fabs(c.rho);
+      sum_mu_rho = a.mu * std::fabs(a.rho) + b.mu * std::fabs(b.rho) + c.mu * std::fabs(c.rho);
     }
+    // Exit facet (g0, g1, g2), the cell on its positive side.
+    const std::array<int, 3>& g = internal::walk_inner_facet(k);
+    // |G~ - G| <= sum E |rho~| + (|mu~| + E) Er + 3.5 u |mu~ rho~| (see above), plus a floor for underflow.
+    const double err = 1.01 * (x.E * sum_rho + x.Er * (sum_mu + 3 * x.E) + 4e-16 * sum_mu_rho) + 1e-300;
+    int op = G > err ? 1 : G < -err ? -1 : 2;
+    if (op == 2) op = int(orient4(array_point(r->v[g[0]]), array_point(r->v[g[1]]), array_point(r->v[g[2]]), x.p));
+    if (op >= 0) {
+      sink(ci, 15u, t_in, 1.0, false);
+      if (op == 0) sink(ci, 15u & ~(1u << k), 1.0, 1.0, true);
+      nx = Next();
+      return false;
+    }
+    // (A denominator that underflows on a tiny cell: the plane formula.)
+    const double den = sum_mu * x.dd;
+    const double t_out = std::isnormal(den) ? clamp_t(1.0 + G / den, t_in)
+                                            : t_of(x, Simplex{cells_->cell_handles[ci], 15u & ~(1u << k)}, t_in);
+    sink(ci, 15u, t_in, t_out, false);
+    const std::uint32_t link = r->n[k];
+    if (link == Cell_array::outside) {
+      nx = Next{false, Simplex{cells_->cell_handles[ci], 15u & ~(1u << k)}, t_out, true};
+      return false;
+    }
+    sink(ci, 15u & ~(1u << k), t_out, t_out, true);
+    // Move to the neighbour n; its vertex opposite the shared facet takes
+    // the pool entry of the vertex k left behind.
+    const std::uint32_t ni = link >> 2;
+    const int m = int(link & 3u);
+    const typename Cell_array::Record* rn = &recs[ni];
+    // One comparison finds how the shared facet is rotated between the two
+    // cells (see walk_facet_map); without a branch, for the same reason.
+    const std::int32_t id0 = rn->v[internal::walk_inner_facet(m)[0]];
+    const unsigned rho = unsigned(r->v[g[1]] == id0) + 2u * unsigned(r->v[g[2]] == id0);
+    const unsigned map = internal::walk_facet_map[std::size_t((4 * k + m) * 3) + rho];
+    unsigned slots = 0;
+    for (int i = 0; i < 4; ++i) slots |= ((st.slots >> (2 * ((map >> (2 * i)) & 3u))) & 3u) << (2 * i);
+    st.slots = slots;
+#if defined(__GNUC__)
+    // Start loading the possible next records while this one is processed
+    // (all four, without a branch: the one back is in cache anyway).
+    for (int i = 0; i < 4; ++i) __builtin_prefetch(&recs[rn->n[i] == Cell_array::outside ? ni : rn->n[i] >> 2]);
+    // and the new vertex of the next step (a batch walk comes back to this
+    // segment only after steps of the others: it is loaded by then)
+    __builtin_prefetch(cells_->point(rn->v[m]));
+#endif
+    cur.r = rn;
+    cur.ci = ni;
+    cur.j = m;
+    cur.have_exit = false;
+    cur.t_in = t_out;
+    return true;
   }
 
   // Exact general traversal of the open cell c, entered at parameter t_in.
