@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <iterator>
 #include <limits>
 #include <memory>
@@ -596,6 +597,67 @@ TEST_CASE("cell array of the walk: handle index and adjacency copy", "[segment_w
   CHECK(index.number_of_runs() == 2); // [0, 1100) merged across gaps of < 1024 slots; [9000, 9050)
   CHECK(index(&buffer[5000]) == internal::Handle_index<int*>::none);
   CHECK(index(&buffer[9999]) == internal::Handle_index<int*>::none);
+  {
+    // Many runs of random lengths and gaps in a 16 MiB buffer, so that 64
+    // KiB chunks hold several runs (with gaps on either side of the merge
+    // limit) and runs span several chunks; pushed in shuffled blocks.
+    // Every element gets its own slot; addresses far from every element,
+    // ones between elements and ones out of the buffer get none. (8-byte
+    // elements aligned to 1: an address between two is a valid pointer.)
+    struct E {
+      char bytes[8];
+    };
+    std::vector<E> big(std::size_t(1) << 21);
+    std::mt19937_64 g(11);
+    std::vector<std::pair<std::size_t, std::size_t>> blocks; // [begin, end) of big
+    std::vector<std::uint8_t> member(big.size(), 0);
+    for (std::size_t at = 0; at < big.size();) {
+      const std::size_t len = std::size_t(1) + g() % (g() % 8 == 0 ? 20000 : 300);
+      const std::size_t e = std::min(big.size(), at + len);
+      blocks.push_back({at, e});
+      for (std::size_t i = at; i < e; ++i) member[i] = 1;
+      at = e + (g() % 3 == 0 ? 2000 + g() % 8000 : g() % 1100);
+    }
+    std::shuffle(blocks.begin(), blocks.end(), g);
+    internal::Handle_index<E*> bi;
+    std::size_t n_members = 0;
+    for (const auto& b : blocks)
+      for (std::size_t i = b.first; i < b.second; ++i, ++n_members) bi.push_back(&big[i]);
+    bi.finish();
+    CHECK(bi.number_of_runs() > 100);
+    std::vector<std::uint8_t> slot_seen(bi.size(), 0);
+    std::size_t unique = 0;
+    for (std::size_t i = 0; i < big.size(); ++i) {
+      if (!member[i]) continue;
+      const std::uint32_t s = bi(&big[i]);
+      REQUIRE(s < bi.size());
+      unique += slot_seen[s] == 0;
+      slot_seen[s] = 1;
+    }
+    CHECK(unique == n_members);
+    // Distance of each element of big to the nearest member, capped.
+    std::vector<std::size_t> dist(big.size(), big.size());
+    for (std::size_t i = 0, last = big.size(); i < big.size(); ++i) {
+      if (member[i]) last = i;
+      if (last != big.size()) dist[i] = i - last;
+    }
+    for (std::size_t i = big.size(), last = big.size(); i-- > 0;) {
+      if (member[i]) last = i;
+      if (last != big.size()) dist[i] = std::min(dist[i], last - i);
+    }
+    std::size_t far = 0;
+    for (std::size_t i = 0; i < big.size(); i += 97)
+      if (dist[i] > 1100) {
+        ++far;
+        CHECK(bi(&big[i]) == internal::Handle_index<E*>::none);
+      }
+    CHECK(far > 100);
+    auto misaligned = [&](std::size_t i) { return reinterpret_cast<E*>(big[i].bytes + 3); };
+    for (std::size_t i = 0; i + 1 < big.size(); i += 1009) CHECK(bi(misaligned(i)) == internal::Handle_index<E*>::none);
+    std::vector<E> other(1000);
+    CHECK(bi(&other[500]) == internal::Handle_index<E*>::none);
+    CHECK(internal::Handle_index<E*>()(&other[0]) == internal::Handle_index<E*>::none);
+  }
 
   // The copy of a Delaunay triangulation with an excluded pocket: records
   // reproduce vertices, neighbours and mirror indices; non-domain

@@ -29,13 +29,16 @@ namespace internal {
 
 /// Dense index of the elements of a CGAL `Compact_container` (the cells or
 /// vertices of a triangulation data structure) from their handles, without
-/// a hash table. The elements live in a few large blocks, so their addresses
+/// a table of all the handles. The elements live in a few large blocks, so their addresses
 /// form a few runs of consecutive slots with small gaps (free slots, block
 /// sentinels). After `finish()`, the runs, sorted by address and merged
 /// across small gaps, number their slots, gaps included: the index of an
-/// element is the number of its slot, and a lookup is a binary search over
-/// the runs. Any other container also works, with one run per element at
-/// worst.
+/// element is the number of its slot. A lookup finds the runs that meet
+/// the address's chunk of the address space (at most 512 chunks of 64 KiB
+/// or more) in a small hash table, then its run among them (usually one or
+/// two): two or three cache lines, where a binary search over all the runs
+/// of a large triangulation read about ten in a dependent chain. Any other
+/// container also works, with one run per element at worst.
 ///
 /// \tparam Handle a CGAL handle (pointer-like; `&*h` is the element address)
 template <class Handle>
@@ -61,10 +64,10 @@ public:
     for (const Run& r : runs_) {
       if (!merged.empty()) {
         Run& m = merged.back();
-        const std::uintptr_t end = m.begin + std::uintptr_t(m.count) * stride;
+        const std::uintptr_t e = end(m);
         // Sorted, disjoint runs: nothing lies between m and r.
-        if (r.begin >= end && (r.begin - end) % stride == 0 && (r.begin - end) / stride <= max_gap) {
-          m.count += std::uint32_t((r.begin - end) / stride) + r.count;
+        if (r.begin >= e && (r.begin - e) % stride == 0 && (r.begin - e) / stride <= max_gap) {
+          m.count += std::uint32_t((r.begin - e) / stride) + r.count;
           continue;
         }
       }
@@ -76,22 +79,48 @@ public:
       size_ += m.count;
     }
     runs_.swap(merged);
+    // The chunk table: chunks as small as possible, from 64 KiB, with at
+    // most 512 of them (the table, at most half full, then fits in 16 KiB).
+    auto chunks_of = [&](int b) {
+      std::size_t n = 0;
+      for (const Run& r : runs_) n += std::size_t((end(r) - 1) >> b) - std::size_t(r.begin >> b) + 1;
+      return n;
+    };
+    chunk_bits_ = 16;
+    while (chunk_bits_ < 48 && chunks_of(chunk_bits_) > 512) ++chunk_bits_;
+    int bits = 4;
+    while ((std::size_t(1) << bits) < 2 * chunks_of(chunk_bits_)) ++bits;
+    shift_ = 64 - bits;
+    table_.assign(std::size_t(1) << bits, Chunk{empty, 0u, 0u});
+    for (std::size_t i = 0; i < runs_.size(); ++i)
+      for (std::uintptr_t c = runs_[i].begin >> chunk_bits_; c <= (end(runs_[i]) - 1) >> chunk_bits_; ++c) {
+        std::size_t s = hash(c);
+        while (table_[s].key != empty && table_[s].key != c) s = (s + 1) & (table_.size() - 1);
+        if (table_[s].key == empty) table_[s] = Chunk{c, std::uint32_t(i), std::uint32_t(i)};
+        else table_[s].last = std::uint32_t(i); // runs in address order
+      }
   }
   /// Slot index of `h`, or `none` if it is in no run.
   /// \param h the handle
   std::uint32_t operator()(Handle h) const {
-    const std::uintptr_t a = address(h);
-    if (runs_.empty() || a < runs_.front().begin) return none;
-    // Last run that begins at or before a, by a binary search whose steps
-    // compile to conditional moves (the branches of std::upper_bound would
-    // be mispredicted half the time).
-    const Run* base = runs_.data();
-    std::size_t n = runs_.size();
+    if (table_.empty()) return none;
+    const std::uintptr_t a = address(h), c = a >> chunk_bits_;
+    std::size_t s = hash(c);
+    while (table_[s].key != c) {
+      if (table_[s].key == empty) return none;
+      s = (s + 1) & (table_.size() - 1);
+    }
+    // The run containing a, if any, is the last one that begins at or
+    // before a, and it meets chunk c: a binary search over the runs of the
+    // chunk (usually one or two), whose steps compile to conditional moves.
+    const Run* base = runs_.data() + table_[s].first;
+    std::size_t n = table_[s].last - table_[s].first + 1;
     while (n > 1) {
       const std::size_t half = n / 2;
       base = base[half].begin <= a ? base + half : base;
       n -= half;
     }
+    if (a < base->begin) return none;
     const std::uintptr_t off = a - base->begin;
     if (off % stride != 0 || off / stride >= base->count) return none;
     return base->first + std::uint32_t(off / stride);
@@ -104,12 +133,22 @@ public:
 private:
   static constexpr std::uintptr_t stride = sizeof(decltype(*std::declval<Handle>()));
   static constexpr std::uintptr_t max_gap = 1024;
+  static constexpr std::uintptr_t empty = std::numeric_limits<std::uintptr_t>::max(); // no chunk has this key
   static std::uintptr_t address(Handle h) { return reinterpret_cast<std::uintptr_t>(&*h); }
   struct Run {
     std::uintptr_t begin;
     std::uint32_t first, count;
   };
+  static std::uintptr_t end(const Run& r) { return r.begin + std::uintptr_t(r.count) * stride; }
+  struct Chunk {
+    std::uintptr_t key;        // address >> chunk_bits_, or empty
+    std::uint32_t first, last; // the runs meeting the chunk
+  };
+  // Fibonacci hashing to the table's index bits.
+  std::size_t hash(std::uintptr_t c) const { return std::size_t((std::uint64_t(c) * 0x9E3779B97F4A7C15ULL) >> shift_); }
   std::vector<Run> runs_;
+  std::vector<Chunk> table_;
+  int chunk_bits_ = 16, shift_ = 60;
   std::uint32_t size_ = 0;
 };
 
