@@ -9,6 +9,8 @@
 /// order of their centroids, vertex coordinates in one array, and the handle
 /// tables to go back to the triangulation.
 
+#include <CGAL_ext/internal/Huge_page_allocator.h>
+
 #include <CGAL/number_utils.h>
 
 #include <tbb/blocked_range.h>
@@ -337,9 +339,12 @@ public:
   /// \param k a vertex index of a record
   Vertex_handle vertex_handle(std::int32_t k) const { return vertices[std::size_t(k)].handle; }
 
-  std::vector<Record> records;          ///< domain cells in Morton order
-  std::vector<Cell_handle> cell_handles; ///< handle of each record
-  std::vector<Vertex_record> vertices;  ///< vertices of the domain cells in Morton order
+  /// A vector on huge pages where the system gives them (the walk reads it at random places).
+  template <class T>
+  using Page_vector = std::vector<T, Huge_page_allocator<T>>;
+  Page_vector<Record> records;          ///< domain cells in Morton order
+  Page_vector<Cell_handle> cell_handles; ///< handle of each record
+  Page_vector<Vertex_record> vertices;  ///< vertices of the domain cells in Morton order
   std::array<double, 3> lo{}, hi{};     ///< bounding box of `vertices`
 
 private:
@@ -371,7 +376,7 @@ private:
     return code;
   }
   Handle_index<Cell_handle> cell_index_;
-  std::vector<std::uint32_t> slot_to_record_; // cell slot -> record index or outside
+  Page_vector<std::uint32_t> slot_to_record_; // cell slot -> record index or outside
 };
 
 } // namespace internal
