@@ -6,6 +6,7 @@
 #include "walk_test_meshes.h"
 
 #include <CGAL_ext/Point_locator_3.h>
+#include <CGAL_ext/internal/Huge_page_allocator.h>
 #include <CGAL_ext/Segment_walk_3.h>
 #include <CGAL_ext/Tet_mesh_triangulation_3.h>
 #include <CGAL_ext/build_triangulation_from_tets.h>
@@ -729,6 +730,33 @@ TEST_CASE("cell array of the walk: the same with one thread and with all", "[seg
   for (std::size_t i = 0; i < one->vertices.size(); ++i) differ += one->vertices[i].handle != all->vertices[i].handle;
   for (DT::Cell_handle c : dt.all_cell_handles()) differ += one->index(c) != all->index(c);
   CHECK(differ == 0);
+}
+
+TEST_CASE("cell array of the walk: its huge-page allocator", "[segment_walk]") {
+  using A = internal::Huge_page_allocator<std::uint64_t>;
+  constexpr std::size_t huge = A::huge_page;
+  A alloc;
+  // Below 2 MiB: plain storage; from 2 MiB: 2 MiB aligned.
+  std::uint64_t* small = alloc.allocate(100);
+  std::uint64_t* large = alloc.allocate(huge / 8 + 1);
+  CHECK(reinterpret_cast<std::uintptr_t>(large) % huge == 0);
+  for (std::size_t i = 0; i < huge / 8 + 1; ++i) large[i] = i * 3;
+  for (std::size_t i = 0; i < 100; ++i) small[i] = i;
+  std::size_t wrong = 0;
+  for (std::size_t i = 0; i < huge / 8 + 1; ++i) wrong += large[i] != i * 3;
+  CHECK(wrong == 0);
+  alloc.deallocate(small, 100);
+  alloc.deallocate(large, huge / 8 + 1);
+  // A vector growing across the threshold keeps its elements; copies and
+  // rebinds compare equal (the allocator is stateless).
+  std::vector<std::uint32_t, internal::Huge_page_allocator<std::uint32_t>> v;
+  for (std::uint32_t i = 0; i < 3000000; ++i) v.push_back(i ^ 0x5a5a5a5au);
+  wrong = 0;
+  for (std::uint32_t i = 0; i < 3000000; ++i) wrong += v[i] != (i ^ 0x5a5a5a5au);
+  CHECK(wrong == 0);
+  CHECK(reinterpret_cast<std::uintptr_t>(v.data()) % huge == 0);
+  CHECK(internal::Huge_page_allocator<char>(alloc) == alloc);
+  CHECK_THROWS_AS(alloc.allocate(std::size_t(-1) / 4), std::bad_alloc);
 }
 
 TEST_CASE("segment walk: tiny segments keep their parameters", "[segment_walk]") {
