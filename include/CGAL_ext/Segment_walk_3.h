@@ -571,32 +571,41 @@ private:
     std::array<const std::uint32_t*, ring_n> entry;
     std::array<std::uint32_t, ring_n> record;
     auto read_entry = [&](std::size_t i) { return entry[i % ring_n] ? *entry[i % ring_n] : Cell_array::outside; };
-    auto stage = [&](std::size_t i, int s) {
-      if (i >= n) return;
+    // Each stage runs for a group of lanes_n queries at once, first
+    // computing its addresses and then requesting them back to back: a
+    // request that misses the TLB holds up the instructions after it until
+    // the page walk ends, and requests issued together wait together.
+    auto stage = [&](std::size_t first, int s) {
+      const std::size_t last = std::min(first + lanes_n, n);
       if (s == 0) {
-        entry[i % ring_n] = cells_->index_entry(queries[i].hint);
+        for (std::size_t i = first; i < last; ++i) entry[i % ring_n] = cells_->index_entry(queries[i].hint);
 #if defined(__GNUC__)
-        if (entry[i % ring_n]) __builtin_prefetch(entry[i % ring_n]);
+        for (std::size_t i = first; i < last; ++i)
+          if (entry[i % ring_n]) __builtin_prefetch(entry[i % ring_n]);
 #endif
       } else if (s == 1) {
-        record[i % ring_n] = read_entry(i);
+        for (std::size_t i = first; i < last; ++i) record[i % ring_n] = read_entry(i);
 #if defined(__GNUC__)
-        if (record[i % ring_n] != Cell_array::outside) __builtin_prefetch(&cells_->records[record[i % ring_n]]);
+        for (std::size_t i = first; i < last; ++i)
+          if (record[i % ring_n] != Cell_array::outside) __builtin_prefetch(&cells_->records[record[i % ring_n]]);
 #endif
       } else {
 #if defined(__GNUC__)
-        if (record[i % ring_n] != Cell_array::outside)
-          for (int l = 0; l < 4; ++l) __builtin_prefetch(cells_->point(cells_->records[record[i % ring_n]].v[l]));
+        for (std::size_t i = first; i < last; ++i)
+          if (record[i % ring_n] != Cell_array::outside)
+            for (int l = 0; l < 4; ++l) __builtin_prefetch(cells_->point(cells_->records[record[i % ring_n]].v[l]));
 #endif
       }
     };
+    // At the first query of each group.
     auto prefetch_ahead = [&](std::size_t i) {
+      if (i % lanes_n != 0) return;
       stage(i + 3 * lanes_n, 0);
       stage(i + 2 * lanes_n, 1);
       stage(i + lanes_n, 2);
     };
-    for (std::size_t i = 0; i < 3 * lanes_n; ++i) stage(i, 0);
-    for (std::size_t i = 0; i < 2 * lanes_n; ++i) stage(i, 1);
+    for (std::size_t g = 0; g < 3; ++g) stage(g * lanes_n, 0);
+    for (std::size_t g = 0; g < 2; ++g) stage(g * lanes_n, 1);
     std::size_t next = 0;
     // Starts queries until one is in the loop, in lane L; false if none is left.
     auto start = [&](Lane& L) {
