@@ -757,6 +757,7 @@ TEST_CASE("cell array of the walk: its huge-page allocator", "[segment_walk]") {
   CHECK(reinterpret_cast<std::uintptr_t>(v.data()) % huge == 0);
   CHECK(internal::Huge_page_allocator<char>(alloc) == alloc);
   CHECK_THROWS_AS(alloc.allocate(std::size_t(-1) / 4), std::bad_alloc);
+  CHECK_THROWS_AS(alloc.allocate(std::size_t(-1) / 8), std::bad_alloc); // n * 8 fits, its rounding up would not
 }
 
 TEST_CASE("segment walk: tiny segments keep their parameters", "[segment_walk]") {

@@ -8,7 +8,6 @@
 /// read at random places (the cell array of the segment walk).
 
 #include <cstddef>
-#include <cstdlib>
 #include <new>
 
 #if defined(__linux__)
@@ -24,7 +23,9 @@ namespace internal {
 /// through a mesh much larger than the cache reads a few bytes at each of
 /// many pages; with 4 KiB pages nearly every read also misses the TLB, whose
 /// page walks are costly on virtual machines. With 2 MiB pages the TLB covers
-/// the arrays of a million-cell mesh. Where the kernel gives no huge pages
+/// the arrays of a million-cell mesh (on a virtual machine, only if the host
+/// maps the guest's memory with huge pages too; otherwise each page walk is
+/// still shorter). Where the kernel gives no huge pages
 /// (THP set to `never`, other systems), it is a plain aligned allocation:
 /// the advice is only a hint and its failure is ignored. Memory: at most 2
 /// MiB of rounding per large allocation. Cost: the first touch of a huge
@@ -48,12 +49,11 @@ struct Huge_page_allocator {
   /// \param n the number of elements
   /// \throws std::bad_alloc if there is no memory
   T* allocate(std::size_t n) {
-    if (n > std::size_t(-1) / sizeof(T)) throw std::bad_alloc();
+    if (n > (std::size_t(-1) - huge_page) / sizeof(T)) throw std::bad_alloc(); // (the rounding below must not wrap)
     const std::size_t bytes = n * sizeof(T);
     if (bytes < huge_page) return static_cast<T*>(::operator new(bytes));
     const std::size_t rounded = (bytes + huge_page - 1) / huge_page * huge_page;
-    void* p = std::aligned_alloc(huge_page, rounded);
-    if (!p) throw std::bad_alloc();
+    void* p = ::operator new(rounded, std::align_val_t(huge_page));
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     (void)madvise(p, rounded, MADV_HUGEPAGE);
 #endif
@@ -64,7 +64,7 @@ struct Huge_page_allocator {
   /// \param n the number of elements it was allocated for
   void deallocate(T* p, std::size_t n) noexcept {
     if (n * sizeof(T) < huge_page) ::operator delete(p);
-    else std::free(p);
+    else ::operator delete(p, std::align_val_t(huge_page));
   }
   /// All instances are interchangeable.
   template <class U>
