@@ -82,7 +82,8 @@ void evict_caches() {
 //    the cache;
 //  - warm: the same run is done once, untimed, just before; what fits in
 //    the cache is there, as for repeated or nearby queries. The timed run
-//    is repeated until it has taken 50 ms and the mean is kept: a single
+//    is repeated until it has taken 50 ms (and at least 3 times, so that
+//    every function's best is a best of means) and the mean is kept: a single
 //    run of short segments lasts well under a millisecond, where the
 //    virtual machine's timing varies most (a run that short measured
 //    10-30% slower than the same run repeated, for our walk and CGAL's
@@ -104,7 +105,7 @@ void interleaved(int rounds, bool cold, const std::array<std::function<std::size
         cells[i] = f[i]();
         ++runs;
         elapsed = thread_seconds() - t;
-      } while (!cold && elapsed < 0.05);
+      } while (!cold && (elapsed < 0.05 || runs < 3));
       best[i] = std::min(best[i], elapsed / runs);
     }
 }

@@ -636,6 +636,27 @@ TEST_CASE("cell array of the walk: handle index and adjacency copy", "[segment_w
       slot_seen[s] = 1;
     }
     CHECK(unique == n_members);
+    // Slots follow addresses: consecutive elements of a run (merged across
+    // gaps of at most 1024 slots) have consecutive slots, gap included;
+    // across a larger gap they only increase, and the gap's ends get none.
+    std::size_t prev = big.size(), wrong_slots = 0, wrong_gaps = 0, big_gaps = 0;
+    for (std::size_t i = 0; i < big.size(); ++i) {
+      if (!member[i]) continue;
+      if (prev != big.size()) {
+        const std::uint32_t a = bi(&big[prev]), b = bi(&big[i]);
+        if (i - prev - 1 <= 1024) wrong_slots += b - a != i - prev;
+        else {
+          ++big_gaps;
+          wrong_slots += !(b > a);
+          wrong_gaps += bi(&big[prev + 1]) != internal::Handle_index<E*>::none;
+          wrong_gaps += bi(&big[i - 1]) != internal::Handle_index<E*>::none;
+        }
+      }
+      prev = i;
+    }
+    CHECK(big_gaps > 50);
+    CHECK(wrong_slots == 0);
+    CHECK(wrong_gaps == 0);
     // Distance of each element of big to the nearest member, capped.
     std::vector<std::size_t> dist(big.size(), big.size());
     for (std::size_t i = 0, last = big.size(); i < big.size(); ++i) {
@@ -658,6 +679,24 @@ TEST_CASE("cell array of the walk: handle index and adjacency copy", "[segment_w
     std::vector<E> other(1000);
     CHECK(bi(&other[500]) == internal::Handle_index<E*>::none);
     CHECK(internal::Handle_index<E*>()(&other[0]) == internal::Handle_index<E*>::none);
+    internal::Handle_index<E*> empty_index;
+    empty_index.finish();
+    CHECK(empty_index.size() == 0);
+    CHECK(empty_index(&other[0]) == internal::Handle_index<E*>::none);
+    // Many more runs than the table's 512 chunks (one element every 1030):
+    // the chunks stay at 64 KiB (two per run are allowed), and every
+    // element is found.
+    internal::Handle_index<E*> many;
+    std::size_t n_many = 0;
+    for (std::size_t i = 0; i < big.size(); i += 1030, ++n_many) many.push_back(&big[i]);
+    many.finish();
+    CHECK(many.number_of_runs() == n_many);
+    CHECK(n_many > 2000);
+    CHECK(many.chunk_bits() == 16);
+    std::size_t found = 0;
+    for (std::size_t i = 0; i < big.size(); i += 1030) found += many(&big[i]) == std::uint32_t(i / 1030);
+    CHECK(found == n_many);
+    CHECK(many(&big[1]) == internal::Handle_index<E*>::none);
   }
 
   // The copy of a Delaunay triangulation with an excluded pocket: records
@@ -758,6 +797,19 @@ TEST_CASE("cell array of the walk: its huge-page allocator", "[segment_walk]") {
   CHECK(internal::Huge_page_allocator<char>(alloc) == alloc);
   CHECK_THROWS_AS(alloc.allocate(std::size_t(-1) / 4), std::bad_alloc);
   CHECK_THROWS_AS(alloc.allocate(std::size_t(-1) / 8), std::bad_alloc); // n * 8 fits, its rounding up would not
+  // Over-aligned elements (as the cell array's records) keep their
+  // alignment below 2 MiB too.
+  struct alignas(64) Wide {
+    double x[8];
+  };
+  internal::Huge_page_allocator<Wide> wide;
+  std::size_t misaligned_blocks = 0;
+  for (std::size_t n : {std::size_t(1), std::size_t(10000), std::size_t(20000)}) {
+    Wide* w = wide.allocate(n);
+    misaligned_blocks += reinterpret_cast<std::uintptr_t>(w) % alignof(Wide) != 0;
+    wide.deallocate(w, n);
+  }
+  CHECK(misaligned_blocks == 0);
 }
 
 TEST_CASE("segment walk: tiny segments keep their parameters", "[segment_walk]") {

@@ -27,7 +27,9 @@ namespace internal {
 /// maps the guest's memory with huge pages too; otherwise each page walk is
 /// still shorter). Where the kernel gives no huge pages
 /// (THP set to `never`, other systems), it is a plain aligned allocation:
-/// the advice is only a hint and its failure is ignored. Memory: at most 2
+/// the advice is only a hint and its failure is ignored. (A large block is
+/// normally fresh from the system; if the C library reuses memory already
+/// touched, the kernel may still gather it into huge pages later.) Memory: at most 2
 /// MiB of rounding per large allocation. Cost: the first touch of a huge
 /// page zeroes 2 MiB at once, and where the kernel compacts memory to find
 /// huge pages (its THP `defrag` setting), that touch may wait for it.
@@ -39,6 +41,7 @@ struct Huge_page_allocator {
   using value_type = T;
   /// Size from which allocations are huge-page aligned.
   static constexpr std::size_t huge_page = std::size_t(2) << 20;
+  static_assert(alignof(T) <= huge_page, "Huge_page_allocator: alignment above 2 MiB");
 
   Huge_page_allocator() noexcept = default;
   /// Conversion from the allocator of another type (stateless).
@@ -51,7 +54,12 @@ struct Huge_page_allocator {
   T* allocate(std::size_t n) {
     if (n > (std::size_t(-1) - huge_page) / sizeof(T)) throw std::bad_alloc(); // (the rounding below must not wrap)
     const std::size_t bytes = n * sizeof(T);
-    if (bytes < huge_page) return static_cast<T*>(::operator new(bytes));
+    if (bytes < huge_page) {
+      // (the records are over-aligned: plain operator new only guarantees
+      // __STDCPP_DEFAULT_NEW_ALIGNMENT__)
+      if constexpr (over_aligned) return static_cast<T*>(::operator new(bytes, std::align_val_t(alignof(T))));
+      else return static_cast<T*>(::operator new(bytes));
+    }
     const std::size_t rounded = (bytes + huge_page - 1) / huge_page * huge_page;
     void* p = ::operator new(rounded, std::align_val_t(huge_page));
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
@@ -63,8 +71,9 @@ struct Huge_page_allocator {
   /// \param p the storage
   /// \param n the number of elements it was allocated for
   void deallocate(T* p, std::size_t n) noexcept {
-    if (n * sizeof(T) < huge_page) ::operator delete(p);
-    else ::operator delete(p, std::align_val_t(huge_page));
+    if (n * sizeof(T) >= huge_page) ::operator delete(p, std::align_val_t(huge_page));
+    else if constexpr (over_aligned) ::operator delete(p, std::align_val_t(alignof(T)));
+    else ::operator delete(p);
   }
   /// All instances are interchangeable.
   template <class U>
@@ -72,6 +81,9 @@ struct Huge_page_allocator {
   /// All instances are interchangeable.
   template <class U>
   bool operator!=(const Huge_page_allocator<U>&) const noexcept { return false; }
+
+private:
+  static constexpr bool over_aligned = alignof(T) > __STDCPP_DEFAULT_NEW_ALIGNMENT__;
 };
 
 } // namespace internal

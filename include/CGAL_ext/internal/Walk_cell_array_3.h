@@ -36,11 +36,11 @@ namespace internal {
 /// sentinels). After `finish()`, the runs, sorted by address and merged
 /// across small gaps, number their slots, gaps included: the index of an
 /// element is the number of its slot. A lookup finds the runs that meet
-/// the address's chunk of the address space (at most 512 chunks of 64 KiB
-/// or more) in a small hash table, then its run among them (usually one or
-/// two): two or three cache lines, where a binary search over all the runs
-/// of a large triangulation read about ten in a dependent chain. Any other
-/// container also works, with one run per element at worst.
+/// the address's chunk of the address space (chunks of 64 KiB or more, at
+/// most 512 or two per run) in a small hash table, then its run among them
+/// (usually one or two): two or three cache lines, where a binary search
+/// over all the runs of a large triangulation read about ten in a dependent
+/// chain. Any other container also works, with one run per element at worst.
 ///
 /// \tparam Handle a CGAL handle (pointer-like; `&*h` is the element address)
 template <class Handle>
@@ -82,14 +82,17 @@ public:
     }
     runs_.swap(merged);
     // The chunk table: chunks as small as possible, from 64 KiB, with at
-    // most 512 of them (the table, at most half full, then fits in 16 KiB).
+    // most 512 (run, chunk) pairs, or two per run if there are more runs
+    // (the table, at most half full, then takes 16 KiB, or 64 bytes per run).
     auto chunks_of = [&](int b) {
       std::size_t n = 0;
       for (const Run& r : runs_) n += std::size_t((end(r) - 1) >> b) - std::size_t(r.begin >> b) + 1;
       return n;
     };
+    const std::size_t max_chunks = std::max<std::size_t>(512, 2 * runs_.size());
+    const int max_bits = std::min(48, std::numeric_limits<std::uintptr_t>::digits - 1);
     chunk_bits_ = 16;
-    while (chunk_bits_ < 48 && chunks_of(chunk_bits_) > 512) ++chunk_bits_;
+    while (chunk_bits_ < max_bits && chunks_of(chunk_bits_) > max_chunks) ++chunk_bits_;
     int bits = 4;
     while ((std::size_t(1) << bits) < 2 * chunks_of(chunk_bits_)) ++bits;
     shift_ = 64 - bits;
@@ -131,6 +134,8 @@ public:
   std::uint32_t size() const { return size_; }
   /// Number of runs.
   std::size_t number_of_runs() const { return runs_.size(); }
+  /// log2 of the chunk size of the look-up table (for tests).
+  int chunk_bits() const { return chunk_bits_; }
 
 private:
   static constexpr std::uintptr_t stride = sizeof(decltype(*std::declval<Handle>()));
