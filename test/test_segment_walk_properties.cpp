@@ -870,11 +870,7 @@ std::size_t batch_differences(const Walk& walk, const std::vector<Query>& querie
       if (fast) walk.fast(queries[i].q, queries[i].p, std::back_inserter(one), queries[i].hint);
       else walk(queries[i].q, queries[i].p, std::back_inserter(one), queries[i].hint);
       if (pieces) *pieces += one.size();
-      bool same = !one.empty() && one.size() == got[i].size();
-      for (std::size_t k = 0; same && k < one.size(); ++k)
-        same = one[k].dimension == got[i][k].dimension && one[k].vertices == got[i][k].vertices &&
-               one[k].cell == got[i][k].cell && one[k].t_in == got[i][k].t_in && one[k].t_out == got[i][k].t_out;
-      differ += !same;
+      differ += one.empty() || !identical_pieces(one, got[i]);
     }
   }
   return differ;

@@ -3,6 +3,7 @@
 // hand-computed answers and CGAL's exact predicates.
 #include "reference/Exact_simplex_reference_3.h"
 #include "reference/degenerate_test_meshes.h"
+#include "walk_test_meshes.h"
 
 #include <CGAL_ext/Segment_walk_3.h>
 #include <CGAL_ext/Tet_mesh_triangulation_3.h>
@@ -155,16 +156,6 @@ struct Family_result {
   std::size_t batch_disagreements = 0, batch_not_identical = 0;
 };
 
-template <class Piece>
-bool identical(const std::vector<Piece>& a, const std::vector<Piece>& b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (a[i].dimension != b[i].dimension || a[i].vertices != b[i].vertices || a[i].cell != b[i].cell ||
-        a[i].t_in != b[i].t_in || a[i].t_out != b[i].t_out)
-      return false;
-  return true;
-}
-
 // Runs both modes of the walk on every segment and compares with the
 // reference; then walks all the segments again in one batch per mode, and
 // compares each query's pieces with the reference and with the per-segment
@@ -270,7 +261,7 @@ void compare_walk(const std::string& name, const T& tr, const Pred& in_domain, c
           std::printf("BATCH DISAGREEMENT (%s) on %s, segment [%s]\n  q = %s\n  p = %s\n  %s\n", fast ? "fast" : "full",
                       name.c_str(), segs[i].kind.c_str(), fmt(segs[i].q).c_str(), fmt(segs[i].p).c_str(), why.c_str());
       }
-      if (!identical(got[i], single_of[fast][i])) ++res.batch_not_identical;
+      if (!testing::identical_pieces(got[i], single_of[fast][i])) ++res.batch_not_identical;
     }
   }
 }

@@ -3,10 +3,11 @@
 #ifndef CGAL_EXT_TEST_WALK_TEST_MESHES_H
 #define CGAL_EXT_TEST_WALK_TEST_MESHES_H
 
-// Kuhn (Freudenthal) grids for the segment walk tests: each unit cube split
-// into 6 tetrahedra around its main diagonal, so that the grid stays
-// conforming when cubes are removed (non-convex domains, tunnels, cubes
-// touching along an edge or at a vertex).
+// Shared by the segment walk tests: Kuhn (Freudenthal) grids, each unit
+// cube split into 6 tetrahedra around its main diagonal, so that the grid
+// stays conforming when cubes are removed (non-convex domains, tunnels,
+// cubes touching along an edge or at a vertex); and the bit-for-bit
+// comparison of two walks' pieces.
 
 #include <algorithm>
 #include <array>
@@ -15,6 +16,18 @@
 
 namespace CGAL_ext {
 namespace testing {
+
+/// Whether two sequences of walk pieces are the same, bit for bit (same
+/// simplices in the same vertex order, same cells, same parameters).
+template <class Piece>
+bool identical_pieces(const std::vector<Piece>& a, const std::vector<Piece>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i].dimension != b[i].dimension || a[i].vertices != b[i].vertices || a[i].cell != b[i].cell ||
+        a[i].t_in != b[i].t_in || a[i].t_out != b[i].t_out)
+      return false;
+  return true;
+}
 
 /// Points and tetrahedra (0-based vertex indices) of a tetrahedral mesh.
 struct Walk_test_mesh {

@@ -92,9 +92,10 @@ public:
     const std::size_t max_chunks = std::max<std::size_t>(512, 2 * runs_.size());
     const int max_bits = std::min(48, std::numeric_limits<std::uintptr_t>::digits - 1);
     chunk_bits_ = 16;
-    while (chunk_bits_ < max_bits && chunks_of(chunk_bits_) > max_chunks) ++chunk_bits_;
+    std::size_t chunks = chunks_of(chunk_bits_);
+    while (chunk_bits_ < max_bits && chunks > max_chunks) chunks = chunks_of(++chunk_bits_);
     int bits = 4;
-    while ((std::size_t(1) << bits) < 2 * chunks_of(chunk_bits_)) ++bits;
+    while ((std::size_t(1) << bits) < 2 * chunks) ++bits;
     shift_ = 64 - bits;
     table_.assign(std::size_t(1) << bits, Chunk{empty, 0u, 0u});
     for (std::size_t i = 0; i < runs_.size(); ++i)
@@ -325,9 +326,8 @@ public:
   /// Index of a domain cell in `records`, or `outside`.
   /// \param c a cell handle of the triangulation (or null)
   std::uint32_t index(Cell_handle c) const {
-    if (c == Cell_handle() || slot_to_record_.empty()) return outside;
-    const std::uint32_t i = cell_index_(c);
-    return i == Handle_index<Cell_handle>::none ? outside : slot_to_record_[i];
+    const std::uint32_t* e = index_entry(c);
+    return e ? *e : outside;
   }
   /// The table entry that `index(c)` reads, or null (for walks that load
   /// it ahead of use).
