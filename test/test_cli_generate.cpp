@@ -1,9 +1,10 @@
 // Copyright (c) 2026 CGAL Metric Frames contributors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
-// metric-frames generate: the five output files (read back with our own VTU
-// reader and the .fra reader), the report, thread-count independence, and
-// clear errors for bad input, with nothing overwritten.
+// metric-frames generate: the six output files (read back with our own VTU
+// reader and the .fra and .perm readers), the hex size and its default
+// rules, the report, thread-count independence, and clear errors for bad
+// input, with nothing overwritten.
 #include <catch2/catch.hpp>
 
 #include "cli_test_support.h"
@@ -11,6 +12,7 @@
 
 #include <CGAL_ext/IO/Fra_file.h>
 #include <CGAL_ext/IO/Medit_mesh.h>
+#include <CGAL_ext/IO/Perm_file.h>
 
 #include <algorithm>
 #include <array>
@@ -31,6 +33,22 @@ double number_after(const std::string& text, const std::string& key) {
   return std::stod(text.substr(k + key.size() + 4));
 }
 
+// The mean length of the distinct edges of a tet mesh.
+double mean_edge_length(const CGAL_ext::IO::Medit_mesh& m) {
+  std::map<std::array<std::size_t, 2>, double> edges;
+  for (const auto& t : m.tetrahedra)
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) {
+        const auto& p = m.vertices[t[a]];
+        const auto& q = m.vertices[t[b]];
+        edges[{std::min(t[a], t[b]), std::max(t[a], t[b])}] =
+            std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
+      }
+  double sum = 0;
+  for (const auto& [e, l] : edges) sum += l;
+  return sum / double(edges.size());
+}
+
 // Whether v is +-s e_k for some k, to 1e-9.
 int axis_of(const double* v, double s) {
   for (int k = 0; k < 3; ++k) {
@@ -44,48 +62,75 @@ int axis_of(const double* v, double s) {
 
 } // namespace
 
-TEST_CASE("generate writes the five files; identity metric on a cube gives axis frames", "[cli][generate]") {
+TEST_CASE("generate writes the six files; identity metric on a cube: axis gradients of length 1/h", "[cli][generate]") {
   const auto out = work / "cube_out";
   const Run r = run("generate " + cube + " -o " + out.string());
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   CHECK(r.err.find("[stage] linear initialisation") != std::string::npos);
   CHECK(r.err.find("singular edges") != std::string::npos);
+  CHECK(r.err.find("expected hexahedra") != std::string::npos);
   const CGAL_ext::IO::Medit_mesh input = CGAL_ext::IO::read_medit_mesh(cube);
   const std::size_t nt = input.tetrahedra.size();
 
+  // No metric, no --hex-size: the hex edge is the mesh's mean edge length.
   const std::string report = slurp(out / "report.json");
+  const double h = number_after(report, "hex_size");
+  CHECK(h == Approx(mean_edge_length(input)).epsilon(1e-9));
+  CHECK(report.find("\"hex_size_rule\": \"mean edge length of the mesh\"") != std::string::npos);
+  CHECK(number_after(report, "expected_hexes") == Approx(8 / (h * h * h)).epsilon(1e-12)); // [0,2]^3
   CHECK(number_after(report, "tets") == nt);
   CHECK(number_after(report, "singular_edges") == 0);
+  CHECK(number_after(report, "non_meshable_edges") == 0);
+  CHECK(number_after(report, "curves") == 0);
   CHECK(number_after(report, "smoothness_energy") < 1e-9);
   CHECK(report.find("\"boundary_alignment_error_deg\"") != std::string::npos);
   CHECK(report.find("\"g_orthonormality_max_error\"") != std::string::npos);
   CHECK(report.find("\"stage_seconds\"") != std::string::npos);
 
+  // .fra: the parameter gradients, +-e_k / h.
   const auto frames = CGAL_ext::IO::read_fra((out / "frames.fra").string());
   REQUIRE(frames.size() == nt);
   for (const auto& f : frames) {
-    std::array<int, 3> axes{axis_of(&f[0], 1), axis_of(&f[3], 1), axis_of(&f[6], 1)};
+    std::array<int, 3> axes{axis_of(&f[0], 1 / h), axis_of(&f[3], 1 / h), axis_of(&f[6], 1 / h)};
     std::sort(axes.begin(), axes.end());
     CHECK(axes == (std::array<int, 3>{0, 1, 2}));
   }
+  // .perm: the frames' matchings; none here but where the canonical frames
+  // list their axes in another order.
+  const CGAL_ext::IO::Perm_file perm = CGAL_ext::IO::read_perm((out / "frames.perm").string());
+  CHECK(perm.tets == nt);
+  for (const auto& face : perm.faces)
+    for (int k = 0; k < 3; ++k) {
+      const double* a = &frames[face.tet1][3 * k];
+      const double* b = &frames[face.tet2][3 * (std::abs(face.p[k]) - 1)];
+      for (int c = 0; c < 3; ++c) CHECK(a[c] == (face.p[k] > 0 ? b[c] : -b[c]));
+    }
 
   const auto vtu = cgal_ext_vtu_test::read_vtu((out / "frames.vtu").string());
   CHECK(vtu.number_of_cells == nt);
   CHECK(vtu.number_of_points == input.vertices.size());
-  for (const char* name : {"frame_1", "frame_2", "frame_3"}) {
+  for (const char* name : {"hex_edge_1", "hex_edge_2", "hex_edge_3", "parameter_gradient_1", "parameter_gradient_2",
+                           "parameter_gradient_3"}) {
     REQUIRE(vtu.cell_data.count(name));
     CHECK(vtu.cell_data.at(name).components == 3);
     CHECK(vtu.cell_data.at(name).values.size() == 3 * nt);
   }
   REQUIRE(vtu.cell_data.count("metric"));
   CHECK(vtu.cell_data.at("metric").values.size() == 9 * nt);
+  CHECK(vtu.cell_data.at("metric").values[0] == Approx(1 / (h * h)));
   for (const char* name : {"energy_density", "boundary", "alignment_error_deg"}) {
     REQUIRE(vtu.cell_data.count(name));
     CHECK(vtu.cell_data.at(name).values.size() == nt);
   }
-  // frame_1 of tet 0 is the first vector of its .fra frame.
-  for (int c = 0; c < 3; ++c) CHECK(vtu.cell_data.at("frame_1").values[c] == frames[0][c]);
+  // parameter_gradient_k is vector k of the .fra frame; hex_edge_k = h^2 times it (F = h R, F^-T = R / h).
+  for (std::size_t t = 0; t < nt; t += 7)
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) {
+        const std::string kk = std::to_string(k + 1);
+        CHECK(vtu.cell_data.at("parameter_gradient_" + kk).values[3 * t + c] == frames[t][3 * k + c]);
+        CHECK(vtu.cell_data.at("hex_edge_" + kk).values[3 * t + c] == Approx(h * h * frames[t][3 * k + c]).margin(1e-12));
+      }
   // "boundary" flags exactly the tets with a facet that no other tet shares.
   std::map<std::array<std::size_t, 3>, int> facet_count;
   auto facet = [&](std::size_t t, int skip) {
@@ -109,25 +154,34 @@ TEST_CASE("generate writes the five files; identity metric on a cube gives axis 
   CHECK(CGAL_ext::IO::read_medit_mesh((out / "mesh.mesh").string()).tetrahedra == input.tetrahedra);
 }
 
-TEST_CASE("generate with a constant metric gives F = A^-1 up to the group", "[cli][generate]") {
-  const auto out = work / "aniso_out";
-  const Run r = run("generate " + l_shape + " --metric-const '1 0 16 0 0 4' -o " + out.string());
-  INFO(r.err);
-  REQUIRE(r.exit_code == 0);
-  const auto frames = CGAL_ext::IO::read_fra((out / "frames.fra").string());
-  REQUIRE(!frames.empty());
-  for (const auto& f : frames) {
-    // Each column is +-(1,0,0), +-(0,1/4,0) or +-(0,0,1/2).
-    int found = 0;
-    for (int k = 0; k < 3; ++k) {
-      const double* v = &f[3 * k];
-      found += axis_of(v, 1) == 0 || axis_of(v, 0.25) == 1 || axis_of(v, 0.5) == 2;
+TEST_CASE("generate with a constant metric: gradients are the rows of A, scaled by --hex-size", "[cli][generate]") {
+  // g = diag(1, 16, 4) on the L-shape (volume 6): A = diag(1, 4, 2).
+  for (const double h : {0.0, 0.5}) {
+    const auto out = work / (h > 0 ? "aniso_h" : "aniso_out");
+    const Run r = run("generate " + l_shape + " --metric-const '1 0 16 0 0 4'" +
+                      (h > 0 ? std::string(" --hex-size 0.5") : std::string()) + " -o " + out.string());
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const double s = h > 0 ? 1 / h : 1; // a given metric is used as it is without --hex-size
+    const auto frames = CGAL_ext::IO::read_fra((out / "frames.fra").string());
+    REQUIRE(!frames.empty());
+    for (const auto& f : frames) {
+      // Each vector is +-(1,0,0), +-(0,4,0) or +-(0,0,2), times 1/h.
+      std::array<int, 3> axes{};
+      for (int k = 0; k < 3; ++k) {
+        const double* v = &f[3 * k];
+        axes[k] = axis_of(v, s) == 0 ? 0 : axis_of(v, 4 * s) == 1 ? 1 : axis_of(v, 2 * s) == 2 ? 2 : -1;
+      }
+      std::sort(axes.begin(), axes.end());
+      CHECK(axes == (std::array<int, 3>{0, 1, 2}));
     }
-    CHECK(found == 3);
+    const std::string report = slurp(out / "report.json");
+    CHECK(number_after(report, "singular_edges") == 0);
+    CHECK(number_after(report, "g_orthonormality_max_error") < 1e-12);
+    CHECK(number_after(report, "expected_hexes") == Approx(6 * 8 * s * s * s).epsilon(1e-12));
+    if (h > 0) CHECK(number_after(report, "hex_size") == 0.5);
+    else CHECK(report.find("\"hex_size\": null") != std::string::npos);
   }
-  const std::string report = slurp(out / "report.json");
-  CHECK(number_after(report, "singular_edges") == 0);
-  CHECK(number_after(report, "g_orthonormality_max_error") < 1e-12);
 }
 
 TEST_CASE("generate output does not depend on the thread count", "[cli][generate]") {
@@ -140,6 +194,7 @@ TEST_CASE("generate output does not depend on the thread count", "[cli][generate
   CHECK(slurp(work / "t1" / "frames.fra") == slurp(work / "t2" / "frames.fra"));
   CHECK(slurp(work / "t1" / "frames.vtu") == slurp(work / "t2" / "frames.vtu"));
   CHECK(slurp(work / "t1" / "singularities.vtu") == slurp(work / "t2" / "singularities.vtu"));
+  CHECK(slurp(work / "t1" / "frames.perm") == slurp(work / "t2" / "frames.perm"));
 }
 
 TEST_CASE("generate refuses to overwrite outputs without --force", "[cli][generate]") {
@@ -209,6 +264,18 @@ TEST_CASE("generate rejects bad input with a clear message", "[cli][generate]") 
     const Run s = run("generate " + cube + " --smooth-surface -o " + out);
     CHECK(s.exit_code == 2);
   }
+  SECTION("a hex size that is not a positive number") {
+    for (const char* h : {"0", "-0.1", "nan", "inf", "0.1x"}) {
+      const Run r = run("generate " + cube + " --hex-size " + h + " -o " + out);
+      CHECK(r.exit_code == 2);
+      CHECK(r.err.find("--hex-size") != std::string::npos);
+    }
+  }
+  SECTION("a hex size so small that the scaled metric overflows") {
+    const Run r = run("generate " + cube + " --metric-const '1e300 0 1e300 0 0 1e300' --hex-size 1e-100 -o " + out);
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find("hex size") != std::string::npos);
+  }
   SECTION("an unknown builtin shape") {
     const Run r = run("generate builtin:teapot -o " + out);
     CHECK(r.exit_code == 1);
@@ -229,4 +296,32 @@ TEST_CASE("generate meshes a built-in shape with Mesh_3", "[cli][generate]") {
   CHECK(number_after(report, "tets") == mesh.tetrahedra.size());
   CHECK(CGAL_ext::IO::read_fra((out / "frames.fra").string()).size() == mesh.tetrahedra.size());
   CHECK(number_after(report, "g_orthonormality_max_error") < 1e-9);
+  // No metric: hexes of the Mesh_3 size; gradients of length 1/h.
+  CHECK(number_after(report, "hex_size") == 0.35);
+  CHECK(report.find("\"hex_size_rule\": \"Mesh_3 size\"") != std::string::npos);
+  const double volume = 4.0 / 3 * M_PI; // the unit ball, approximated from inside
+  CHECK(number_after(report, "expected_hexes") < volume / (0.35 * 0.35 * 0.35));
+  CHECK(number_after(report, "expected_hexes") > 0.9 * volume / (0.35 * 0.35 * 0.35));
+  for (const auto& f : CGAL_ext::IO::read_fra((out / "frames.fra").string()))
+    for (int k = 0; k < 3; ++k) CHECK(std::hypot(f[3 * k], f[3 * k + 1], f[3 * k + 2]) == Approx(1 / 0.35));
+  // The ball's field is singular; every singular edge is in singularities.vtu
+  // with its type, and the report's counts agree.
+  const double edges = number_after(report, "singular_edges");
+  CHECK(edges > 0);
+  CHECK(number_after(report, "interior_ends") == 0);
+  const auto sing = cgal_ext_vtu_test::read_vtu((out / "singularities.vtu").string());
+  CHECK(sing.number_of_cells == edges);
+  for (const char* name : {"type", "index", "valence", "meshable", "turn_deg", "axis_angle_deg", "edge_axis_angle_deg",
+                           "curve"})
+    CHECK(sing.cell_data.at(name).values.size() == edges);
+  CHECK(sing.cell_data.at("axis").values.size() == 3 * edges);
+  double meshable = 0;
+  for (double m : sing.cell_data.at("meshable").values) meshable += m;
+  CHECK(edges - meshable == number_after(report, "non_meshable_edges"));
+  for (double c : sing.cell_data.at("curve").values) CHECK(c >= 1);
+  CHECK(sing.point_data.at("node").values.size() == sing.number_of_points);
+  CHECK(sing.point_data.at("vertex_index").values.size() == sing.number_of_points);
+  const CGAL_ext::IO::Perm_file perm = CGAL_ext::IO::read_perm((out / "frames.perm").string());
+  CHECK(perm.tets == mesh.tetrahedra.size());
+  CHECK(!perm.faces.empty());
 }

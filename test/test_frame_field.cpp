@@ -5,6 +5,7 @@
 // (identity and constant metrics on a box, the flat metric g = J^T J on
 // Phi^{-1}(box)), singularity bookkeeping, and thread-count independence.
 #include <CGAL_ext/Frame_field_3.h>
+#include <CGAL_ext/Frame_field_matchings_3.h>
 #include <CGAL_ext/Frame_field_singularities_3.h>
 #include <CGAL_ext/Metric_field_3.h>
 #include <CGAL_ext/build_triangulation_from_tets.h>
@@ -158,6 +159,126 @@ TEST_CASE("flat metric g = J^T J on Phi^-1(box) recovers F = J^-1, better under 
   CHECK(mean_err[2] < 0.75 * mean_err[1]);
   CHECK(boundary_mean[1] < 0.75 * boundary_mean[0]);
   CHECK(boundary_mean[2] < 0.75 * boundary_mean[1]);
+}
+
+TEST_CASE("parameter gradients of a constant metric: A n / h for the box's face normals n", "[frame_field][gradients]") {
+  // A box rotated by Q, g = Q diag(1, 4, 1) Q^T / h^2 (hexes of edges h, h/2,
+  // h along the box's axes). The gradients (CubeCover's .fra vectors) are
+  // A n_k / h for the face normals n_k = Q e_k, up to the octahedral group;
+  // with Q = I these are the rows of A / h.
+  const double h = 0.5;
+  for (const Eigen::Matrix3d& Q :
+       {Eigen::Matrix3d::Identity().eval(),
+        Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix()}) {
+    testing::Test_mesh m = testing::kuhn_grid(3, 3, 3, 1.0);
+    for (auto& p : m.points) {
+      const Eigen::Vector3d x = Q * Eigen::Vector3d(p[0], p[1], p[2]);
+      p = {x(0), x(1), x(2)};
+    }
+    auto mesh = make_mesh(m);
+    const Eigen::Matrix3d A = Q * Eigen::Vector3d(1, 2, 1).asDiagonal() * Q.transpose() / h;
+    const Field field(mesh->tr, Eigen::Matrix3d(A * A));
+    Frames ff(field);
+    ff.compute();
+    double worst = 0;
+    for (std::size_t i = 0; i < ff.size(); ++i) {
+      const Eigen::Matrix3d G = ff.parameter_gradients(i);
+      // Each gradient is +-A n for a different face normal n.
+      std::set<int> used;
+      for (int k = 0; k < 3; ++k) {
+        double best = 1e300;
+        int which = -1;
+        for (int r = 0; r < 3; ++r) {
+          const Eigen::Vector3d target = A * Q.col(r);
+          const double e = std::min((G.col(k) - target).norm(), (G.col(k) + target).norm()) / target.norm();
+          if (e < best) best = e, which = r;
+        }
+        worst = std::max(worst, best);
+        used.insert(which);
+      }
+      CHECK(used.size() == 3);
+      // F^-1 F = I: the gradients are the dual basis of the hex edges.
+      CHECK((G.transpose() * ff.frame(i) - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-12);
+    }
+    INFO("worst relative error of a gradient " << worst);
+    CHECK(worst < 1e-8);
+    // Lengths: 1/h across the faces of normal Q e_1 and Q e_3, 2/h across Q e_2.
+    CHECK((A * Q.col(1)).norm() == Approx(2 / h));
+    // The metric volume is the number of hexahedra: 27 * (1/h) (2/h) (1/h).
+    CHECK(field.metric_volume() == Approx(27 * 2 / (h * h * h)).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("flat metric: the gradients approach grad Phi / h and become curl-free under refinement",
+          "[frame_field][gradients]") {
+  // g = J^T J / h^2 on Phi^{-1}([0,1]^3) (MATH.md section 6): the ideal
+  // integer-grid map is Phi / h, whose gradients are the rows of J / h. The
+  // discrete curl of a gradient field is its circulation around interior
+  // edges, through the tets' centroids and the faces' centroids, with the
+  // vectors carried across faces by the matchings; it is exactly zero for
+  // the gradients of a piecewise-linear map.
+  const double h = 0.25;
+  std::vector<double> gradient_error, mean_curl;
+  for (int n : {3, 6, 9}) {
+    auto mesh = pulled_back_box(n);
+    const Field field(mesh->tr, [&](const Tr::Point& p) {
+      return Eigen::Matrix3d(cgal_ext_test::flat_metric::metric(Eigen::Vector3d(p.x(), p.y(), p.z())) / (h * h));
+    });
+    Frames ff(field);
+    ff.compute();
+    double err = 0;
+    for (std::size_t i = 0; i < ff.size(); ++i) {
+      const Eigen::Matrix3d target = cgal_ext_test::flat_metric::jacobian(ff.centroid(i)).transpose() / h; // columns grad Phi_k / h
+      const Eigen::Matrix3d G = ff.parameter_gradients(i);
+      const Eigen::Matrix3d M = closest_octahedral_matching(target, G).G; // G M ~ target
+      err = std::max(err, (G * M - target).norm() / target.norm());
+    }
+    gradient_error.push_back(err);
+    // Circulation of each gradient around each interior edge.
+    const Frame_field_matchings_3<Frames> matchings(ff);
+    double sum = 0;
+    std::size_t edges = 0;
+    for (auto e = mesh->tr.finite_edges_begin(); e != mesh->tr.finite_edges_end(); ++e) {
+      std::vector<Tr::Cell_handle> ring;
+      bool interior = true;
+      auto c = mesh->tr.incident_cells(*e), done = c;
+      do {
+        if (mesh->tr.is_infinite(c) || ff.index(c) < 0) interior = false;
+        ring.push_back(c);
+      } while (++c != done);
+      if (!interior) continue;
+      for (int k0 = 0; k0 < 3; ++k0) {
+        int k = k0;
+        double sign = 1, circulation = 0, length = 0;
+        for (std::size_t r = 0; r < ring.size(); ++r) {
+          const auto a = ring[r], b = ring[(r + 1) % ring.size()];
+          const std::size_t ia = std::size_t(ff.index(a)), ib = std::size_t(ff.index(b));
+          const int fa = a->index(b);
+          Eigen::Vector3d fc = Eigen::Vector3d::Zero();
+          for (int v = 0; v < 4; ++v)
+            if (v != fa) fc += internal::to_eigen_vector(a->vertex(v)->point()) / 3;
+          circulation += sign * ff.parameter_gradients(ia).col(k).dot(fc - ff.centroid(ia));
+          const Eigen::Matrix3d& M = matchings.matching(ia, fa); // vector k of a -> M(:,k) in b
+          int next = 0;
+          for (int q = 0; q < 3; ++q)
+            if (M(q, k) != 0) next = q, sign *= M(q, k);
+          k = next;
+          circulation += sign * ff.parameter_gradients(ib).col(k).dot(ff.centroid(ib) - fc);
+          length += (fc - ff.centroid(ia)).norm() + (ff.centroid(ib) - fc).norm();
+        }
+        sum += std::abs(circulation) / (length / h); // relative to |grad| * loop length
+      }
+      ++edges;
+    }
+    mean_curl.push_back(sum / double(3 * edges));
+    WARN("n = " << n << ": worst relative gradient error " << err << ", mean relative circulation " << mean_curl.back()
+                << " over " << edges << " interior edges");
+  }
+  CHECK(gradient_error[2] < 0.1);
+  CHECK(gradient_error[1] < 0.75 * gradient_error[0]);
+  CHECK(gradient_error[2] < 0.75 * gradient_error[1]);
+  CHECK(mean_curl[1] < 0.75 * mean_curl[0]);
+  CHECK(mean_curl[2] < 0.75 * mean_curl[1]);
 }
 
 TEST_CASE("the result does not depend on the number of threads", "[frame_field]") {

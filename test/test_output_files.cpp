@@ -2,8 +2,10 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 // Output files: VTU (ParaView) tetrahedra and segments, read back with our own
 // strict reader (test/vtu_test_reader.h), in binary and ASCII; CubeCover .fra
-// frame fields, written and read back bit for bit; and every kind of bad input.
+// frame fields, written and read back bit for bit; CubeCover .perm face
+// matchings; and every kind of bad input.
 #include <CGAL_ext/IO/Fra_file.h>
+#include <CGAL_ext/IO/Perm_file.h>
 #include <CGAL_ext/IO/Vtu_file.h>
 #include <CGAL_ext/Input_error.h>
 
@@ -178,6 +180,11 @@ void expect_invalid(const std::string& path, const std::function<void()>& write,
   }
   CHECK(slurp(path) == before);
   CHECK(temporary_files_left() == 0);
+}
+
+// Expects read_perm(path) to throw an Input_error (see expect_input_error).
+void expect_perm_error(const std::string& path, std::size_t line, const std::string& element, const std::string& words) {
+  cgal_ext_test::expect_input_error([&] { CGAL_ext::IO::read_perm(path); }, path, line, element, words);
 }
 
 // Expects read_fra(path) to throw an Input_error (see expect_input_error).
@@ -513,4 +520,76 @@ TEST_CASE(".fra: write_fra refuses non-finite frames and leaves the existing fil
   Frames frames(3, std::array<double, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1});
   frames[2][4] = infinity;
   expect_invalid(p, [&] { write_fra(p, frames); }, "the frame of tetrahedron 2 (0-based) is not finite");
+}
+
+TEST_CASE(".perm: the layout CubeCover's readFrameField reads, read back exactly", "[perm]") {
+  using CGAL_ext::IO::Perm_face;
+  CGAL_ext::IO::Perm_file f;
+  f.tets = 5;
+  f.faces = {Perm_face{0, 3, {{-2, 1, 3}}}, Perm_face{4, 1, {{3, -2, 1}}}};
+  const std::string p = scratch("layout.perm");
+  CGAL_ext::IO::write_perm(p, f);
+  CHECK(slurp(p) == "PERM 1\n5 2 3\n0 3 -2 1 3\n4 1 3 -2 1\n");
+  CHECK(temporary_files_left() == 0);
+  const CGAL_ext::IO::Perm_file back = CGAL_ext::IO::read_perm(p);
+  CHECK(back.tets == 5);
+  REQUIRE(back.faces.size() == 2);
+  for (int k = 0; k < 2; ++k) {
+    CHECK(back.faces[k].tet1 == f.faces[k].tet1);
+    CHECK(back.faces[k].tet2 == f.faces[k].tet2);
+    CHECK(back.faces[k].p == f.faces[k].p);
+  }
+  // What CubeCover's own writer gives for a field without singular faces.
+  CGAL_ext::IO::write_perm(p, {3, {}});
+  CHECK(slurp(p) == "PERM 1\n3 0 3\n");
+  CHECK(CGAL_ext::IO::read_perm(p).faces.empty());
+  // Any white space, CRLF.
+  const auto v = CGAL_ext::IO::read_perm(put_file("variants.perm", "PERM 1\r\n4 1\n3\r\n  2 1\t-1 -2 3\r\n"));
+  REQUIRE(v.faces.size() == 1);
+  CHECK(v.faces[0].p == std::array<int, 3>{-1, -2, 3});
+}
+
+TEST_CASE(".perm: read_perm errors name the file, the line and the face", "[perm]") {
+  const std::string head = "PERM 1\n4 2 3\n";
+  SECTION("bad first word") { expect_perm_error(put_file("word.perm", "FRA 1\n"), 1, "", "not a CubeCover face matching"); }
+  SECTION("version") { expect_perm_error(put_file("v2.perm", "PERM 2\n4 0 3\n"), 1, "", ".perm version 2"); }
+  SECTION("vectors per face") { expect_perm_error(put_file("vpf.perm", "PERM 1\n4 0 2\n"), 2, "", "2 vectors per face"); }
+  SECTION("negative counts") {
+    expect_perm_error(put_file("negt.perm", "PERM 1\n-4 0 3\n"), 2, "", "negative number of tetrahedra");
+    expect_perm_error(put_file("negf.perm", "PERM 1\n4 -1 3\n"), 2, "", "negative number of faces");
+  }
+  SECTION("absurd count") {
+    expect_perm_error(put_file("huge.perm", "PERM 1\n4 100000000000 3\n0 1 1 2 3\n"), 2, "", "more than the rest");
+  }
+  SECTION("tetrahedron out of range") {
+    expect_perm_error(put_file("range.perm", head + "0 1 1 2 3\n2 4 1 2 3\n"), 4, "face 2", "tetrahedron index 4 is out of range");
+  }
+  SECTION("a face joining a tetrahedron to itself") {
+    expect_perm_error(put_file("self.perm", head + "0 1 1 2 3\n2 2 1 2 3\n"), 4, "face 2", "both sides are tetrahedron 2");
+  }
+  SECTION("a face listed twice, in the other orientation") {
+    expect_perm_error(put_file("twice.perm", head + "0 1 2 1 3\n1 0 2 1 3\n"), 4, "face 2", "listed twice");
+  }
+  SECTION("not a signed permutation") {
+    expect_perm_error(put_file("zero.perm", head + "0 1 0 2 3\n"), 3, "face 1", "entry 0 is not one of");
+    expect_perm_error(put_file("four.perm", head + "0 1 4 2 3\n"), 3, "face 1", "entry 4 is not one of");
+    expect_perm_error(put_file("double.perm", head + "0 1 -2 2 3\n"), 3, "face 1", "vector 2 is the target of two");
+  }
+  SECTION("truncated, and more than the count") {
+    expect_perm_error(put_file("cut.perm", head + "0 1 2 1 3\n1 2 2 1\n"), 0, "face 2", "unexpected end of file");
+    expect_perm_error(put_file("extra.perm", head + "0 1 2 1 3\n1 2 2 1 3\n5\n"), 5, "", "after the last of the 2 faces");
+  }
+  SECTION("empty and missing files") {
+    expect_perm_error(put_file("empty.perm", "\n"), 0, "", "empty");
+    expect_perm_error(scratch("missing.perm"), 0, "", "cannot open");
+  }
+}
+
+TEST_CASE(".perm: write_perm refuses bad faces and leaves the existing file", "[perm]") {
+  const std::string p = scratch("bad.perm");
+  using CGAL_ext::IO::Perm_face;
+  expect_invalid(p, [&] { CGAL_ext::IO::write_perm(p, {3, {Perm_face{0, 3, {{1, 2, 3}}}}}); },
+                 "face 0 (0-based): tetrahedron index out of range");
+  expect_invalid(p, [&] { CGAL_ext::IO::write_perm(p, {3, {Perm_face{1, 1, {{1, 2, 3}}}}}); }, "both sides");
+  expect_invalid(p, [&] { CGAL_ext::IO::write_perm(p, {3, {Perm_face{0, 1, {{1, 1, 3}}}}}); }, "target of two");
 }

@@ -345,6 +345,14 @@ public:
   /// of unit length in the metric at the centroid.
   /// \param i a tetrahedron index
   Eigen::Matrix3d frame(std::size_t i) const { return A_[i].inverse() * rotation(i); }
+  /// The parameter gradients `A_i R_i = F_i^{-T}`: column `k` is the
+  /// gradient that the `k`-th parameter of an integer-grid map should have
+  /// in tetrahedron `i` (row `k` of `F_i^{-1}`, the dual basis of the hex
+  /// edges: `F^{-1} F = I`). Its length is the number of hex layers per
+  /// unit length across that direction; for `g = I / h^2` it is `1 / h`.
+  /// This is what CubeCover's `.fra` file holds.
+  /// \param i a tetrahedron index
+  Eigen::Matrix3d parameter_gradients(std::size_t i) const { return A_[i] * rotation(i); }
   /// `A = g^{1/2}` at the centroid of tetrahedron `i`.
   /// \param i a tetrahedron index
   const Eigen::Matrix3d& sqrt_metric(std::size_t i) const { return A_[i]; }

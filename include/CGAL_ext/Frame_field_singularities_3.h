@@ -4,101 +4,189 @@
 #define CGAL_EXT_FRAME_FIELD_SINGULARITIES_3_H
 
 /// \file Frame_field_singularities_3.h
-/// The singular edges of an octahedral frame field: interior mesh edges
-/// around which the frames do not come back to themselves (MATH.md section 5).
+/// The singularities of an octahedral frame field: the interior mesh edges
+/// around which the frames do not come back to themselves (MATH.md section
+/// 5), typed by their holonomy, and grouped into curves and nodes.
 
+#include <CGAL_ext/Frame_field_matchings_3.h>
 #include <CGAL_ext/Metric_field_3.h>
 #include <CGAL_ext/Octahedral_frame.h>
 
 #include <Eigen/Core>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <string>
+#include <map>
 #include <vector>
 
 namespace CGAL_ext {
 
 /// \ingroup PkgCGALExtFrames
-/// The type of an interior edge of a frame field, from the monodromy around it.
+/// The type of an interior edge of a frame field, from the holonomy (the
+/// product of the face matchings) around it. Only the two quarter turns about
+/// the edge are edges of a hexahedral mesh; the others are defects of the
+/// field that an integer-grid map cannot mesh.
 enum class Singularity_type {
-  regular,       ///< the product of matchings is the identity
-  plus_quarter,  ///< a quarter turn about the edge, index +1/4 (3 hexahedra around the edge)
-  minus_quarter, ///< a quarter turn against the edge, index -1/4 (5 hexahedra around the edge)
-  half,          ///< a half turn about a frame axis: index +-1/2 (2 or 6 hexahedra); unstable
-  other          ///< a turn about a frame axis nearly across the edge, or a third turn about a
-                 ///< cube diagonal: no hexahedral edge fits (a defect of the field)
+  regular,        ///< the product of matchings is the identity
+  plus_quarter,   ///< a quarter turn about the edge, index +1/4: 3 hexahedra around it
+  minus_quarter,  ///< a quarter turn against the edge, index -1/4: 5 hexahedra around it
+  quarter_across, ///< a quarter turn about a frame axis other than the one along the edge
+  half,           ///< a half turn (about a frame axis or a face diagonal of the frame)
+  third           ///< a third of a turn about a diagonal of the frame's cube
 };
 
 /// \ingroup PkgCGALExtFrames
-/// The name used in outputs: "regular", "+1/4", "-1/4", "1/2", "other".
+/// The name used in outputs: "regular", "+1/4", "-1/4", "1/4 across", "1/2", "1/3".
 /// \param t the type
 inline const char* singularity_type_name(Singularity_type t) {
   switch (t) {
     case Singularity_type::regular: return "regular";
     case Singularity_type::plus_quarter: return "+1/4";
     case Singularity_type::minus_quarter: return "-1/4";
+    case Singularity_type::quarter_across: return "1/4 across";
     case Singularity_type::half: return "1/2";
-    default: return "other";
+    default: return "1/3";
   }
+}
+
+/// \ingroup PkgCGALExtFrames
+/// Whether a singular edge of this type can be an edge of a hexahedral mesh
+/// (a quarter turn about the edge: `plus_quarter` or `minus_quarter`).
+/// \param t the type
+inline bool is_meshable(Singularity_type t) {
+  return t == Singularity_type::plus_quarter || t == Singularity_type::minus_quarter;
 }
 
 /// \ingroup PkgCGALExtFrames
 /// A singular interior edge.
 struct Singular_edge {
   /// The 0-based vertex indices of the edge, sorted.
-  std::array<std::size_t, 2> vertices;
+  std::array<std::size_t, 2> vertices{{0, 0}};
   /// The type.
-  Singularity_type type;
+  Singularity_type type = Singularity_type::regular;
   /// The number of hexahedra the edge would have around it (4 - 4 index):
-  /// 3 for +1/4, 5 for -1/4, 0 when it is not defined (half turns, other).
-  int valence;
-  /// The index of the product of matchings in `octahedral_group()`.
-  int monodromy;
+  /// 3 for `plus_quarter`, 5 for `minus_quarter`, 0 otherwise.
+  int valence = 0;
+  /// The index in `octahedral_group()` of the product of the matchings
+  /// around the loop that starts in the first tetrahedron of CGAL's
+  /// circulation about the edge (the product is conjugate to it from any
+  /// other start).
+  int monodromy = 0;
   /// The number of tetrahedra around the edge.
-  int loop_size;
+  int loop_size = 0;
+  /// The rotation angle of the holonomy in degrees, signed by the right-hand
+  /// rule about the edge's curve: +90 for `plus_quarter`, -90 for
+  /// `minus_quarter`, +-90 or +-120 for the others by the side of the curve
+  /// their axis lies on, 180 for half turns. It depends neither on the tetrahedron the loop
+  /// starts from nor on the orientation of the edge.
+  double turn_deg = 0;
+  /// The angle between the holonomy's axis and the direction of the edge's
+  /// singular curve around it (see `singular_edges()`), measured in the
+  /// metric, in degrees in [0, 90].
+  double axis_angle_deg = 0;
+  /// The angle between the holonomy's axis and the edge alone, in the metric,
+  /// in degrees in [0, 90] (larger than `axis_angle_deg` where the curve
+  /// zigzags along the mesh edges).
+  double edge_axis_angle_deg = 0;
+  /// The holonomy's axis as a unit Euclidean direction (a hex edge direction
+  /// `A^{-1} R a`), oriented along the edge from `vertices[0]` to `vertices[1]`.
+  Eigen::Vector3d axis = Eigen::Vector3d::Zero();
+  /// The midpoint of the edge.
+  Eigen::Vector3d midpoint = Eigen::Vector3d::Zero();
 };
 
+namespace internal {
+
+// For each vertex touched by the edges, the indices of its edges, ordered by
+// the other vertex (deterministic traversals).
+inline std::map<std::size_t, std::vector<std::size_t>> edges_at_vertices(
+    const std::vector<std::array<std::size_t, 2>>& edges) {
+  std::map<std::size_t, std::vector<std::size_t>> incident;
+  for (std::size_t k = 0; k < edges.size(); ++k)
+    for (int s = 0; s < 2; ++s) incident[edges[k][s]].push_back(k);
+  for (auto& [v, list] : incident)
+    std::sort(list.begin(), list.end(), [&, v = v](std::size_t a, std::size_t b) {
+      return edges[a][edges[a][0] == v ? 1 : 0] < edges[b][edges[b][0] == v ? 1 : 0];
+    });
+  return incident;
+}
+
+// The vertex reached from `v` by following the chain of edges through
+// vertices of exactly two edges, leaving `v` along edge `k`, for at most
+// `steps` edges.
+inline std::size_t follow_chain(const std::vector<std::array<std::size_t, 2>>& edges,
+                                const std::map<std::size_t, std::vector<std::size_t>>& incident, std::size_t v,
+                                std::size_t k, int steps) {
+  for (int s = 0; s < steps; ++s) {
+    v = edges[k][0] == v ? edges[k][1] : edges[k][0];
+    const std::vector<std::size_t>& list = incident.at(v);
+    if (list.size() != 2) break;
+    k = list[0] == k ? list[1] : list[0];
+  }
+  return v;
+}
+
+} // namespace internal
+
 /// \ingroup PkgCGALExtFrames
-/// Finds the singular edges of a frame field.
+/// How many edges on each side of a singular edge `singular_edges()` follows
+/// along its singular curve to estimate the curve's direction (see there).
+constexpr int singular_curve_direction_span = 2;
+
+/// \ingroup PkgCGALExtFrames
+/// Finds and types the singular edges of a frame field from its face matchings.
 ///
-/// For each interior edge (no incident cell outside the domain), the cells
-/// `c_0, ..., c_{n-1}` around it, in the circulation order, give the
-/// matchings `G_k = closest_octahedral_matching(T(k->k+1) R_k, R_{k+1}).G`
-/// (transports included, MATH.md section 5) and their product
-/// `P = G_{n-1} ... G_0` (exact: signed permutations). The edge is regular iff
-/// `P = I`. Otherwise the monodromy `R_0 P R_0^T` is the rotation of the
-/// continued frame after one turn: a quarter turn about the frame axis
-/// `a = R_0 axis(P)`; its sign is that of the turn about the edge direction
-/// `t` oriented by the circulation (right-hand rule), compared through the
-/// frame vector `A^{-1} a`: `+1/4` (3 hexahedra around the edge) if it turns
-/// positively about `t`, `-1/4` (5) otherwise. A half turn is `half`. When the
-/// axis is nearly across the edge (`|cos| <= 0.2`, beyond about 78 degrees:
-/// the discrete curve zigzags, so edges at 45 degrees and more from the axis
-/// are common and still carry the curve), or `P` is a third turn about a cube
-/// diagonal, the edge has no hexahedral meaning and is reported as `other`.
+/// For each interior edge (no incident cell outside the domain) with cells
+/// `c_0, ..., c_{n-1}` around it in CGAL's circulation order, the holonomy is
+/// the exact product `P = G_{n-1} ... G_0` of the face matchings `G_k` from
+/// `c_k` to `c_{k+1}` (`Frame_field_matchings_3`, transports included). The
+/// edge is regular iff `P = I`. Otherwise `P` is a rotation by 90, 120 or 180
+/// degrees about an axis `a` of the frame space of `c_0`; in space it is the
+/// turn `R_0 P R_0^T` about `R_0 a`.
+///
+/// The singular edges form curves that zigzag along the mesh edges, so a
+/// quarter turn is compared with the direction `d` of its curve rather than
+/// with the edge alone: the chord from the vertex reached by following the
+/// curve `singular_curve_direction_span` edges back to the one reached as
+/// many edges forward (the chain stops at nodes, vertices with other than two
+/// singular edges). The loop around the edge links the curve once, with the
+/// sign of the edge traversed along `d`: about `d`, the holonomy is `P` or
+/// `P^{-1}` by that sign (an exact test; an edge may zigzag backwards or
+/// across `d`). In the metric (`A` at the edge's midpoint in `c_0`):
+/// - a quarter turn whose axis is the frame axis closest to `A d` (the one
+///   along which an integer-grid map lays the curve) is `plus_quarter` if it
+///   turns positively about `d` and `minus_quarter` otherwise;
+/// - a quarter turn about another frame axis is `quarter_across`: the curve
+///   runs across its own turn's axis, and no hex edge can follow it;
+/// - half turns are `half`, thirds of a turn are `third`.
+///
+/// A different starting cell conjugates `P` by the matchings and moves the
+/// axis with the frames; a reversed loop inverts `P` and reverses `t`; so
+/// the type and `turn_deg` do not depend on either.
 ///
 /// The edges are returned sorted by their vertex indices (deterministic).
 ///
 /// \tparam Frame_field a `Frame_field_3` after `compute()`
 /// \param ff the frame field
+/// \param matchings its face matchings
 /// \returns the singular edges (regular edges are not listed)
 template <class Frame_field>
-std::vector<Singular_edge> singular_edges(const Frame_field& ff) {
+std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_field_matchings_3<Frame_field>& matchings) {
   using Cell_handle = typename Frame_field::Cell_handle;
-  const auto& tr = ff.metric_field().triangulation();
-  std::vector<Singular_edge> out;
+  const auto& field = ff.metric_field();
+  const auto& tr = field.triangulation();
+  // Pass 1: the holonomy of every interior edge, and what the typing needs.
+  struct Found {
+    Singular_edge edge;
+    Eigen::Matrix3d P, frame_from_metric; // R_0^T A
+    Eigen::Vector3d t;                    // the edge, oriented by the circulation
+    std::array<Eigen::Vector3d, 2> p;     // positions of edge.vertices
+  };
+  std::vector<Found> found;
   std::vector<Cell_handle> loop;
-  // Each tetrahedron is in about six edge loops: canonicalize its frame once.
-  std::vector<Eigen::Matrix3d> R(ff.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, R.size()), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) R[i] = ff.rotation(i);
-  });
   for (auto e = tr.finite_edges_begin(); e != tr.finite_edges_end(); ++e) {
     loop.clear();
     bool interior = true;
@@ -112,58 +200,253 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff) {
       loop.push_back(c);
     } while (++circ != done);
     if (!interior) continue;
-    const auto u = e->first->vertex(e->second), v = e->first->vertex(e->third);
-    const Eigen::Vector3d pu = internal::to_eigen_vector(u->point()), pv = internal::to_eigen_vector(v->point());
-    // The product of the matchings around the loop.
     const int n = int(loop.size());
     Eigen::Matrix3d P = Eigen::Matrix3d::Identity();
-    double turn = 0; // orientation of the circulation about u -> v
     for (int k = 0; k < n; ++k) {
       const Cell_handle a = loop[k], b = loop[(k + 1) % n];
-      const std::size_t ia = ff.index(a), ib = ff.index(b);
-      const int fb = b->index(a); // facet of b shared with a
-      const Eigen::Matrix3d T = ff.transport_into(ib, fb); // T(a->b)
-      P = closest_octahedral_matching(T * R[ia], R[ib]).G * P;
+      P = matchings.matching(std::size_t(ff.index(a)), a->index(b)) * P;
+    }
+    const int monodromy = octahedral_group_index(P, 0);
+    if (monodromy == 0) continue;
+
+    const auto u = e->first->vertex(e->second), v = e->first->vertex(e->third);
+    const Eigen::Vector3d pu = internal::to_eigen_vector(u->point()), pv = internal::to_eigen_vector(v->point());
+    double turn = 0; // orientation of the circulation about u -> v
+    for (int k = 0; k < n; ++k) {
+      const std::size_t ia = std::size_t(ff.index(loop[k])), ib = std::size_t(ff.index(loop[(k + 1) % n]));
       turn += (ff.centroid(ia) - pu).cross(ff.centroid(ib) - pu).dot(pv - pu);
     }
-    const int index = octahedral_group_index(P);
-    if (index == 0) continue;
-    Singular_edge s;
+    Found f;
+    f.P = P;
+    f.t = (turn >= 0 ? 1.0 : -1.0) * (pv - pu);
+    const Eigen::Vector3d mid = 0.5 * (pu + pv);
+    const Eigen::Matrix3d A = field.A_at(loop[0], typename Frame_field::Point_3(mid(0), mid(1), mid(2)));
+    const Eigen::Matrix3d& R0 = matchings.rotation(std::size_t(ff.index(loop[0])));
+    f.frame_from_metric = R0.transpose() * A;
+    Singular_edge& s = f.edge;
     s.vertices = {ff.vertex_index(u), ff.vertex_index(v)};
-    if (s.vertices[0] > s.vertices[1]) std::swap(s.vertices[0], s.vertices[1]);
-    s.monodromy = index;
+    f.p = {pu, pv};
+    if (s.vertices[0] > s.vertices[1]) std::swap(s.vertices[0], s.vertices[1]), std::swap(f.p[0], f.p[1]);
+    s.monodromy = monodromy;
     s.loop_size = n;
     s.valence = 0;
-    s.type = Singularity_type::other;
-    // Classify P: its rotation angle (trace) and axis (the +1 eigenvector).
-    const double tr_p = P.trace(); // 1 + 2 cos(angle): 1 quarter, -1 half, 0 third turn
-    if (tr_p == 1 || tr_p == -1) {
-      Eigen::Vector3d axis_frame = Eigen::Vector3d::Zero();
-      for (int k = 0; k < 3; ++k)
-        if (P(k, k) == 1) axis_frame(k) = 1;
-      const std::size_t i0 = ff.index(loop[0]);
-      const Eigen::Matrix3d& R0 = R[i0];
-      const Eigen::Vector3d t = ((pv - pu) * (turn >= 0 ? 1.0 : -1.0)).normalized();
-      const Eigen::Vector3d frame_dir = (ff.sqrt_metric(i0).inverse() * (R0 * axis_frame)).normalized();
-      const double c = frame_dir.dot(t);
-      // Discrete singular curves zigzag along mesh edges: an edge may make a
-      // large angle with the turn's axis and still carry the curve; only an
-      // axis nearly across the edge (beyond about 78 degrees) is "other".
-      if (tr_p == -1) {
-        if (std::abs(c) > 0.2) s.type = Singularity_type::half;
-      } else if (std::abs(c) > 0.2) {
-        // Sense of the quarter turn about axis_frame: the skew part of P.
-        const Eigen::Vector3d w(P(2, 1) - P(1, 2), P(0, 2) - P(2, 0), P(1, 0) - P(0, 1));
-        const double sense = w.dot(axis_frame) * c; // positive: turns positively about t
-        s.type = sense > 0 ? Singularity_type::plus_quarter : Singularity_type::minus_quarter;
-        s.valence = sense > 0 ? 3 : 5;
+    s.midpoint = mid;
+    found.push_back(f);
+  }
+  std::sort(found.begin(), found.end(),
+            [](const Found& a, const Found& b) { return a.edge.vertices < b.edge.vertices; });
+
+  // Pass 2: the direction of each edge's curve, and the types.
+  std::vector<std::array<std::size_t, 2>> ends(found.size());
+  std::map<std::size_t, Eigen::Vector3d> position;
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    ends[k] = found[k].edge.vertices;
+    for (int s = 0; s < 2; ++s) position[ends[k][s]] = found[k].p[s];
+  }
+  const auto incident = internal::edges_at_vertices(ends);
+  std::vector<Singular_edge> out;
+  out.reserve(found.size());
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    Found& f = found[k];
+    Singular_edge& s = f.edge;
+    const int span = singular_curve_direction_span;
+    const std::size_t back = internal::follow_chain(ends, incident, s.vertices[1], k, span + 1);
+    const std::size_t ahead = internal::follow_chain(ends, incident, s.vertices[0], k, span + 1);
+    // The curve, traversed from vertices[0] to vertices[1] here, and its
+    // direction d over a few edges. The loop about t links the curve with
+    // the sign of t . (p1 - p0), exactly +-1 (t is +-(p1 - p0)): about the
+    // traversal, the holonomy is P^link.
+    const Eigen::Vector3d d = position[ahead] - position[back];
+    const double link = f.t.dot(f.p[1] - f.p[0]) > 0 ? 1.0 : -1.0;
+    const Eigen::Vector3d d_frame = (f.frame_from_metric * d).normalized(); // the curve in c_0's frame space
+    const Eigen::Vector3d t_frame = (f.frame_from_metric * f.t).normalized();
+
+    // The axis a of P (frame space of c_0), with P a rotation by angle > 0 about a.
+    const Eigen::Matrix3d& P = f.P;
+    const double trace = P.trace(); // 1 + 2 cos(angle): exactly 1, 0 or -1
+    const double angle = trace == 1 ? 90 : trace == 0 ? 120 : 180;
+    Eigen::Vector3d a(P(2, 1) - P(1, 2), P(0, 2) - P(2, 0), P(1, 0) - P(0, 1));
+    if (trace == -1) { // half turn: P = 2 a a^T - I, a from the largest column of P + I
+      const Eigen::Matrix3d S = P + Eigen::Matrix3d::Identity();
+      int c;
+      S.colwise().squaredNorm().maxCoeff(&c);
+      a = S.col(c);
+    }
+    a.normalize();
+    const double c = link * a.dot(d_frame); // > 0: P turns positively about d
+    s.turn_deg = trace == -1 ? 180.0 : (c >= 0 ? angle : -angle);
+    s.axis_angle_deg = std::acos(std::min(1.0, std::abs(c))) * 180 / M_PI;
+    s.edge_axis_angle_deg = std::acos(std::min(1.0, std::abs(a.dot(t_frame)))) * 180 / M_PI;
+    const Eigen::Vector3d axis = f.frame_from_metric.inverse() * a; // A^{-1} R_0 a
+    s.axis = (axis.dot(f.p[1] - f.p[0]) < 0 ? -1.0 : 1.0) * axis.normalized();
+    s.type = trace == 0 ? Singularity_type::third : trace == -1 ? Singularity_type::half : Singularity_type::quarter_across;
+    if (trace == 1) {
+      int nearest;
+      d_frame.cwiseAbs().maxCoeff(&nearest);
+      if (std::abs(a(nearest)) == 1) {
+        s.type = c > 0 ? Singularity_type::plus_quarter : Singularity_type::minus_quarter;
+        s.valence = c > 0 ? 3 : 5;
       }
     }
     out.push_back(s);
   }
-  std::sort(out.begin(), out.end(),
-            [](const Singular_edge& a, const Singular_edge& b) { return a.vertices < b.vertices; });
   return out;
+}
+
+/// \ingroup PkgCGALExtFrames
+/// Finds and types the singular edges of a frame field (computes its face
+/// matchings first; see the overload taking them).
+/// \tparam Frame_field a `Frame_field_3` after `compute()`
+/// \param ff the frame field
+/// \returns the singular edges, sorted by their vertex indices
+template <class Frame_field>
+std::vector<Singular_edge> singular_edges(const Frame_field& ff) {
+  return singular_edges(ff, Frame_field_matchings_3<Frame_field>(ff));
+}
+
+/// \ingroup PkgCGALExtFrames
+/// A vertex where singular edges meet in other than a simple chain: a vertex
+/// with 1 or with 3 or more incident singular edges.
+struct Singular_node {
+  /// What the node is.
+  enum class Kind {
+    boundary_end, ///< one singular edge, at a boundary vertex: a curve reaching the surface
+    interior_end, ///< one singular edge, inside the volume: a curve that stops (not meshable)
+    junction      ///< three or more singular edges
+  };
+  /// The 0-based vertex index.
+  std::size_t vertex;
+  /// The vertex's position.
+  Eigen::Vector3d position;
+  /// The number of incident singular edges.
+  int degree;
+  /// Whether the vertex is on the boundary of the domain.
+  bool on_boundary;
+  /// The kind.
+  Kind kind;
+};
+
+/// \ingroup PkgCGALExtFrames
+/// The name of a node kind in outputs: "boundary end", "interior end", "junction".
+/// \param k the kind
+inline const char* singular_node_kind_name(Singular_node::Kind k) {
+  return k == Singular_node::Kind::boundary_end ? "boundary end"
+         : k == Singular_node::Kind::interior_end ? "interior end"
+                                                   : "junction";
+}
+
+/// \ingroup PkgCGALExtFrames
+/// A singular curve: a maximal chain of singular edges whose inner vertices
+/// have exactly two singular edges.
+struct Singular_curve {
+  /// The 0-based vertex indices along the curve; for a closed curve the
+  /// first vertex is repeated at the end.
+  std::vector<std::size_t> vertices;
+  /// The indices of its edges in the array of singular edges, in order.
+  std::vector<std::size_t> edges;
+  /// Whether the curve is a closed loop without nodes.
+  bool closed = false;
+  /// Its Euclidean length.
+  double length = 0;
+  /// The numbers of its edges of each kind.
+  std::size_t plus_quarter_edges = 0, minus_quarter_edges = 0, non_meshable_edges = 0;
+};
+
+/// \ingroup PkgCGALExtFrames
+/// The singular edges grouped into curves and nodes.
+struct Singularity_graph {
+  /// The curves, from the nodes in increasing vertex order, then the closed loops.
+  std::vector<Singular_curve> curves;
+  /// The nodes, in increasing vertex order.
+  std::vector<Singular_node> nodes;
+  /// Counts: curves that are closed loops, nodes of each kind.
+  std::size_t closed_curves = 0, boundary_ends = 0, interior_ends = 0, junctions = 0;
+};
+
+/// \ingroup PkgCGALExtFrames
+/// Groups singular edges into curves and nodes.
+///
+/// Nodes are the vertices with 1, or 3 or more, incident singular edges.
+/// Curves run from node to node through vertices with exactly two singular
+/// edges; what remains are closed loops. Deterministic: curves start at the
+/// nodes in increasing vertex order and leave each along its edges in
+/// increasing order of the other vertex; loops start at their smallest vertex.
+///
+/// \tparam Frame_field a `Frame_field_3`
+/// \param ff the frame field (for the boundary and the positions)
+/// \param edges its singular edges, as `singular_edges()` returns them
+template <class Frame_field>
+Singularity_graph singularity_graph(const Frame_field& ff, const std::vector<Singular_edge>& edges) {
+  using Vertex_handle = typename Frame_field::Vertex_handle;
+  std::vector<std::array<std::size_t, 2>> ends(edges.size());
+  for (std::size_t k = 0; k < edges.size(); ++k) ends[k] = edges[k].vertices;
+  const auto incident = internal::edges_at_vertices(ends);
+  // Positions and boundary flags of the vertices that singular edges touch.
+  std::map<std::size_t, Eigen::Vector3d> position;
+  std::map<std::size_t, bool> boundary;
+  for (const auto& b : ff.boundary_faces())
+    for (int k = 1; k < 4; ++k) {
+      const Vertex_handle v = ff.cell(b.tet)->vertex((b.facet + k) % 4);
+      const std::size_t i = ff.vertex_index(v);
+      if (incident.count(i)) boundary[i] = true;
+    }
+  for (std::size_t i = 0; i < ff.size(); ++i)
+    for (int k = 0; k < 4; ++k) {
+      const Vertex_handle v = ff.cell(i)->vertex(k);
+      const std::size_t j = ff.vertex_index(v);
+      if (incident.count(j) && !position.count(j)) position[j] = internal::to_eigen_vector(v->point());
+    }
+  auto other = [&](std::size_t k, std::size_t v) { return edges[k].vertices[0] == v ? edges[k].vertices[1] : edges[k].vertices[0]; };
+
+  Singularity_graph g;
+  std::vector<char> used(edges.size(), 0);
+  auto trace = [&](std::size_t start, std::size_t first_edge) {
+    Singular_curve c;
+    c.vertices.push_back(start);
+    std::size_t v = start, k = first_edge;
+    for (;;) {
+      used[k] = 1;
+      c.edges.push_back(k);
+      const Singular_edge& e = edges[k];
+      if (e.type == Singularity_type::plus_quarter) ++c.plus_quarter_edges;
+      else if (e.type == Singularity_type::minus_quarter) ++c.minus_quarter_edges;
+      else ++c.non_meshable_edges;
+      const std::size_t w = other(k, v);
+      c.length += (position[w] - position[v]).norm();
+      c.vertices.push_back(w);
+      v = w;
+      const auto& list = incident.at(v);
+      if (list.size() != 2) break; // a node
+      k = list[0] == k ? list[1] : list[0];
+      if (used[k]) break; // back at the start of a loop
+    }
+    c.closed = c.vertices.front() == c.vertices.back() && incident.at(start).size() == 2;
+    return c;
+  };
+  for (const auto& [v, list] : incident) {
+    if (list.size() == 2) continue;
+    Singular_node node;
+    node.vertex = v;
+    node.position = position[v];
+    node.degree = int(list.size());
+    node.on_boundary = boundary.count(v) > 0;
+    node.kind = list.size() >= 3 ? Singular_node::Kind::junction
+                : node.on_boundary ? Singular_node::Kind::boundary_end
+                                   : Singular_node::Kind::interior_end;
+    g.nodes.push_back(node);
+    if (node.kind == Singular_node::Kind::junction) ++g.junctions;
+    else if (node.kind == Singular_node::Kind::boundary_end) ++g.boundary_ends;
+    else ++g.interior_ends;
+    for (std::size_t k : list)
+      if (!used[k]) g.curves.push_back(trace(v, k));
+  }
+  for (const auto& [v, list] : incident)
+    for (std::size_t k : list)
+      if (!used[k]) {
+        g.curves.push_back(trace(v, k));
+        ++g.closed_curves;
+      }
+  return g;
 }
 
 } // namespace CGAL_ext

@@ -11,6 +11,7 @@
 #include <CGAL/Unique_hash_map.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <limits>
 #include <vector>
@@ -23,9 +24,11 @@ struct Tet_mesh_statistics_3 {
   std::size_t vertices = 0;        ///< vertices incident to a domain cell
   std::size_t cells = 0;           ///< domain cells (tetrahedra)
   std::size_t boundary_facets = 0; ///< facets between a domain cell and a non-domain cell
+  std::size_t edges = 0;           ///< edges of the domain cells
   std::size_t components = 0;      ///< connected components of domain cells, through shared facets
   CGAL::Bbox_3 bbox;               ///< bounding box of the domain's vertices
   double volume = 0;               ///< total volume of the domain cells
+  double mean_edge_length = 0;     ///< mean length of the edges of the domain cells
   double min_dihedral_angle = 0;   ///< smallest dihedral angle of a domain cell, in degrees
   double max_dihedral_angle = 0;   ///< largest dihedral angle of a domain cell, in degrees
 };
@@ -88,6 +91,22 @@ Tet_mesh_statistics_3 compute_tet_mesh_statistics(const Triangulation& tr, Domai
       }
     }
   }
+  double length_sum = 0;
+  for (auto e = tr.finite_edges_begin(); e != tr.finite_edges_end(); ++e) {
+    auto circ = tr.incident_cells(*e), done = circ;
+    bool in = false;
+    do {
+      if (domain(circ)) {
+        in = true;
+        break;
+      }
+    } while (++circ != done);
+    if (!in) continue;
+    ++s.edges;
+    length_sum += std::sqrt(CGAL::to_double(
+        CGAL::squared_distance(e->first->vertex(e->second)->point(), e->first->vertex(e->third)->point())));
+  }
+  s.mean_edge_length = s.edges ? length_sum / double(s.edges) : 0;
   s.min_dihedral_angle = s.cells ? min_angle : 0;
   s.max_dihedral_angle = s.cells ? max_angle : 0;
   return s;

@@ -58,6 +58,7 @@ struct Tetrahedralize_report {
   std::size_t vertices = 0;           ///< vertices of the mesh
   std::size_t tets = 0;               ///< tetrahedra of the mesh
   std::size_t boundary_triangles = 0; ///< boundary triangles of the mesh
+  double size = 0;                    ///< the size used (`Tetrahedralize_options::size`, or the automatic one)
   double seconds = 0;                 ///< wall-clock time of the whole call, reading included
   /// A one-line description of the domain and of the sizes used, e.g.
   /// `surface 'part.off' (1200 vertices, 2396 triangles); size 0.17, facet

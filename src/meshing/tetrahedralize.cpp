@@ -272,9 +272,10 @@ IO::Medit_mesh to_medit_mesh(const C3t3& c3t3) {
   return m;
 }
 
-void fill_report(Tetrahedralize_report* report, const IO::Medit_mesh& m, Clock::time_point start,
+void fill_report(Tetrahedralize_report* report, const IO::Medit_mesh& m, const Sizes& s, Clock::time_point start,
                  std::string domain) {
   if (!report) return;
+  report->size = s.size;
   report->vertices = m.vertices.size();
   report->tets = m.tetrahedra.size();
   report->boundary_triangles = m.triangles.size();
@@ -336,7 +337,7 @@ IO::Medit_mesh mesh_polyhedral(const Surface& surface, const Tetrahedralize_opti
                  (o.sharp_features ? "protected (60 degrees, " + std::to_string(m.edges.size()) + " mesh edges)"
                                    : std::string("not protected")) +
                  "; " + optimize_text(o);
-  fill_report(report, m, start, std::move(description));
+  fill_report(report, m, s, start, std::move(description));
   return m;
 }
 
@@ -604,7 +605,7 @@ IO::Medit_mesh mesh_implicit(const Implicit_shape& shape, const Tetrahedralize_o
     throw Input_error("", 0, element,
                       "meshing produced no tetrahedra (is the size " + number(s.size) + " too large for the shape?)");
   IO::Medit_mesh m = to_medit_mesh(c3t3);
-  fill_report(report, m, start, shape.description + "; " + sizes_text(s) + "; " + optimize_text(o));
+  fill_report(report, m, s, start, shape.description + "; " + sizes_text(s) + "; " + optimize_text(o));
   return m;
 }
 

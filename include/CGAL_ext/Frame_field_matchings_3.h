@@ -1,0 +1,146 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_EXT_FRAME_FIELD_MATCHINGS_3_H
+#define CGAL_EXT_FRAME_FIELD_MATCHINGS_3_H
+
+/// \file Frame_field_matchings_3.h
+/// The matchings of a frame field across its interior faces: which frame
+/// vector of one tetrahedron continues as which (signed) vector of its
+/// neighbour, transports included (MATH.md section 5). The singular edges,
+/// and CubeCover's `.perm` file, are made from them.
+
+#include <CGAL_ext/Frame_field_3.h>
+#include <CGAL_ext/IO/Perm_file.h>
+#include <CGAL_ext/Octahedral_frame.h>
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace CGAL_ext {
+
+/// \ingroup PkgCGALExtFrames
+/// The face matchings of a frame field, computed once.
+///
+/// For tetrahedron `i` and its neighbour `j` across local facet `f`, the
+/// matching is the element `G` of `octahedral_group()` with
+/// `T(i->j) R_i ~ R_j G` (`closest_octahedral_matching(T(i->j) R_i, R_j)`),
+/// where `R_i = ff.rotation(i)` is the canonical rotation of tetrahedron `i`
+/// (the one whose columns the output files hold). Column by column,
+/// `T(i->j) R_i e_k ~ sign_k R_j e_{pi(k)}`: vector `k` of `i` continues as
+/// `sign_k` times vector `pi(k)` of `j`.
+///
+/// Each interior face is matched once, from its tetrahedron of smaller index,
+/// and the other side holds the inverse `G^T` exactly, so the two sides always
+/// agree, and products of matchings around edges are exact.
+///
+/// \tparam Frame_field a `Frame_field_3` after `compute()` (or `set_rotations()`)
+template <class Frame_field>
+class Frame_field_matchings_3 {
+public:
+  /// Computes the matchings of every interior face (in parallel; the result
+  /// does not depend on the number of threads).
+  /// \param ff the frame field; the matchings are those of its current rotations
+  explicit Frame_field_matchings_3(const Frame_field& ff) : index_(ff.size()), rotation_(ff.size()) {
+    const std::size_t n = ff.size();
+    internal::parallel_for_each_index(n, [&](std::size_t i) { rotation_[i] = ff.rotation(i); });
+    internal::parallel_for_each_index(n, [&](std::size_t i) {
+      for (int f = 0; f < 4; ++f) {
+        const std::int64_t j = ff.neighbor(i, f);
+        if (j < 0) {
+          index_[i][f] = -1;
+          continue;
+        }
+        // The face is matched from the smaller index; the larger one takes
+        // the inverse (G^T), found in the group table.
+        const bool first = std::size_t(j) > i;
+        const std::size_t a = first ? i : std::size_t(j), b = first ? std::size_t(j) : i;
+        const int fb = first ? mirror_facet(ff, i, f) : f; // facet of b towards a
+        const Eigen::Matrix3d T = ff.transport_into(b, fb); // T(a->b)
+        const int k = closest_octahedral_matching(T * rotation_[a], rotation_[b]).index;
+        index_[i][f] = std::int8_t(first ? k : inverse_index(k));
+      }
+    });
+  }
+
+  /// The number of tetrahedra.
+  std::size_t size() const { return index_.size(); }
+
+  /// The index in `octahedral_group()` of the matching from tetrahedron `i`
+  /// to its neighbour across local facet `f`, or -1 on the boundary.
+  /// \param i a tetrahedron index
+  /// \param f a local facet index in 0..3
+  int index(std::size_t i, int f) const { return index_[i][f]; }
+
+  /// The matching from tetrahedron `i` across local facet `f` (an exact
+  /// signed permutation matrix); the identity on the boundary.
+  /// \param i a tetrahedron index
+  /// \param f a local facet index in 0..3
+  const Eigen::Matrix3d& matching(std::size_t i, int f) const {
+    return octahedral_group()[index_[i][f] < 0 ? 0 : index_[i][f]];
+  }
+
+  /// The rotation `R_i` the matchings were computed with (`ff.rotation(i)`).
+  /// \param i a tetrahedron index
+  const Eigen::Matrix3d& rotation(std::size_t i) const { return rotation_[i]; }
+
+  /// The matchings as CubeCover's `.perm` file holds them (see
+  /// `IO::write_perm()`): one face per interior face whose matching is not
+  /// the identity, from its tetrahedron of smaller index, in the order of
+  /// that index and of the local facet. With the frames
+  /// `ff.parameter_gradients(i)` (or `ff.frame(i)`) in a `.fra` file, vector
+  /// `k` of a tetrahedron is column `k` of that matrix.
+  /// \param ff the frame field the matchings were computed from
+  IO::Perm_file perm_file(const Frame_field& ff) const {
+    IO::Perm_file out;
+    out.tets = size();
+    for (std::size_t i = 0; i < size(); ++i)
+      for (int f = 0; f < 4; ++f) {
+        const std::int64_t j = ff.neighbor(i, f);
+        if (j > std::int64_t(i) && index_[i][f] != 0)
+          out.faces.push_back({i, std::size_t(j), signed_permutation(index_[i][f])});
+      }
+    return out;
+  }
+
+  /// The signed, 1-based vector correspondence of a matching, as CubeCover's
+  /// `.perm` files write it: `p[k] = sign_k (pi(k) + 1)`, so that vector `k`
+  /// of the first tetrahedron times `sign(p[k])` is vector `|p[k]| - 1` of
+  /// the second.
+  /// \param group_index an index in `octahedral_group()`
+  static std::array<int, 3> signed_permutation(int group_index) {
+    const Eigen::Matrix3d& G = octahedral_group()[group_index];
+    std::array<int, 3> p{};
+    for (int k = 0; k < 3; ++k)
+      for (int r = 0; r < 3; ++r)
+        if (G(r, k) != 0) p[k] = (G(r, k) > 0 ? 1 : -1) * (r + 1);
+    return p;
+  }
+
+  /// The index in `octahedral_group()` of the inverse of element `k`.
+  /// \param k an index in `octahedral_group()`
+  static int inverse_index(int k) {
+    static const std::array<int, 24> table = [] {
+      std::array<int, 24> t{};
+      for (int m = 0; m < 24; ++m) t[m] = octahedral_group_index(octahedral_group()[m].transpose(), 0);
+      return t;
+    }();
+    return table[k];
+  }
+
+private:
+  // The local facet of neighbour j = ff.neighbor(i, f) that faces i.
+  static int mirror_facet(const Frame_field& ff, std::size_t i, int f) {
+    return ff.cell(std::size_t(ff.neighbor(i, f)))->index(ff.cell(i));
+  }
+
+  std::vector<std::array<std::int8_t, 4>> index_;
+  std::vector<Eigen::Matrix3d> rotation_;
+};
+
+} // namespace CGAL_ext
+
+#endif // CGAL_EXT_FRAME_FIELD_MATCHINGS_3_H

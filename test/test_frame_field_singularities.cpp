@@ -1,0 +1,410 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// Singularities of frame fields, as the hex-meshing pipeline sees them:
+// fields built with a known holonomy around a known edge (quarter turns about
+// and across the edge, half and third turns) are typed and located exactly;
+// the types do not depend on how the mesh is numbered; singular edges group
+// into curves and nodes; and the .perm file alone gives back exactly the
+// singular edges (holonomy recomputed from it the way CubeCover does).
+#include <CGAL_ext/Frame_field_3.h>
+#include <CGAL_ext/Frame_field_matchings_3.h>
+#include <CGAL_ext/Frame_field_singularities_3.h>
+#include <CGAL_ext/IO/Perm_file.h>
+#include <CGAL_ext/Metric_field_3.h>
+#include <CGAL_ext/build_triangulation_from_tets.h>
+#include <CGAL_ext/tetrahedralize.h>
+
+#include "reference/degenerate_test_meshes.h"
+
+#include <catch2/catch.hpp>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <set>
+
+using namespace CGAL_ext;
+using Tr = Tet_mesh_triangulation_3<>;
+using Field = Metric_field_3<Tr>;
+using Frames = Frame_field_3<Field>;
+
+namespace {
+
+struct Setup {
+  Tr tr;
+  testing::Test_mesh m;
+  std::unique_ptr<Field> field;
+  std::unique_ptr<Frames> ff;
+};
+
+// A frame field on the mesh, with R(x) = rotation_at(centroid) in every tetrahedron.
+std::unique_ptr<Setup> field_on(testing::Test_mesh m, const std::function<Eigen::Matrix3d(const Eigen::Vector3d&)>& rotation_at) {
+  auto s = std::make_unique<Setup>();
+  s->m = std::move(m);
+  build_triangulation_from_tets(s->m.points, s->m.tets, {}, s->tr);
+  s->field = std::make_unique<Field>(s->tr, Eigen::Matrix3d::Identity().eval());
+  s->ff = std::make_unique<Frames>(*s->field);
+  s->ff->set_rotations([&](std::size_t i) { return rotation_at(s->ff->centroid(i)); });
+  return s;
+}
+
+// A rotation by `fraction` of the azimuth about (2, 2) (a full turn around
+// the vertical line x = y = 2 turns the frames by fraction * 2 pi) about `axis`.
+std::function<Eigen::Matrix3d(const Eigen::Vector3d&)> twist(double fraction, const Eigen::Vector3d& axis) {
+  return [=](const Eigen::Vector3d& c) {
+    const double a = std::atan2(c(1) - 2, c(0) - 2);
+    return Eigen::AngleAxisd(fraction * a, axis.normalized()).toRotationMatrix();
+  };
+}
+
+// The 4 x 4 x 2 grid of unit cubes: the line x = y = 2 is 2 interior edges.
+testing::Test_mesh grid() { return testing::kuhn_grid(4, 4, 2, 1.0); }
+
+// Both singular edges on the line x = y = 2, with the type and turn given.
+void check_central_line(const Setup& s, const std::vector<Singular_edge>& sing, Singularity_type type, double turn) {
+  REQUIRE(sing.size() == 2);
+  for (const Singular_edge& e : sing) {
+    INFO("edge " << e.vertices[0] << "-" << e.vertices[1] << ", type " << singularity_type_name(e.type) << ", turn "
+                 << e.turn_deg << ", axis angle " << e.axis_angle_deg);
+    CHECK(e.type == type);
+    // A quarter turn exactly across the edge has no side: only its size is defined.
+    CHECK((type == Singularity_type::quarter_across ? std::abs(e.turn_deg) : e.turn_deg) == turn);
+    CHECK(std::abs(e.midpoint(0) - 2) < 1e-12);
+    CHECK(std::abs(e.midpoint(1) - 2) < 1e-12);
+    for (std::size_t v : e.vertices) {
+      CHECK(s.m.points[v][0] == 2);
+      CHECK(s.m.points[v][1] == 2);
+    }
+  }
+}
+
+// The holonomy of every interior edge recomputed from a .perm file alone, as
+// CubeCover's FrameField::setSingularEdges does it: the signed permutations of
+// the faces around the edge, composed; the edges where it is not the identity.
+std::set<std::array<std::size_t, 2>> singular_edges_from_perm(const testing::Test_mesh& m, const IO::Perm_file& perm) {
+  using Face = std::array<std::size_t, 3>;
+  std::map<Face, std::vector<std::size_t>> tets_of_face;
+  std::map<std::array<std::size_t, 2>, std::vector<std::size_t>> tets_of_edge;
+  for (std::size_t t = 0; t < m.tets.size(); ++t) {
+    for (int skip = 0; skip < 4; ++skip) {
+      Face f;
+      for (int k = 0, j = 0; k < 4; ++k)
+        if (k != skip) f[j++] = m.tets[t][k];
+      std::sort(f.begin(), f.end());
+      tets_of_face[f].push_back(t);
+    }
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b)
+        tets_of_edge[{std::min(m.tets[t][a], m.tets[t][b]), std::max(m.tets[t][a], m.tets[t][b])}].push_back(t);
+  }
+  // Matching from t1 to t2: vector k goes to sign * vector target[k].
+  struct Signed_permutation {
+    std::array<int, 3> target{{0, 1, 2}}, sign{{1, 1, 1}};
+  };
+  std::map<std::pair<std::size_t, std::size_t>, Signed_permutation> matching;
+  for (const IO::Perm_face& f : perm.faces) {
+    Signed_permutation g, inverse;
+    for (int k = 0; k < 3; ++k) {
+      g.target[k] = std::abs(f.p[k]) - 1;
+      g.sign[k] = f.p[k] > 0 ? 1 : -1;
+      inverse.target[g.target[k]] = k;
+      inverse.sign[g.target[k]] = g.sign[k];
+    }
+    matching[{f.tet1, f.tet2}] = g;
+    matching[{f.tet2, f.tet1}] = inverse;
+  }
+  std::set<std::array<std::size_t, 2>> out;
+  for (const auto& [edge, tets] : tets_of_edge) {
+    // Walk around the edge from tets[0] through the faces containing it.
+    std::vector<std::size_t> ring{tets[0]};
+    bool interior = true;
+    std::size_t previous = std::size_t(-1), current = tets[0];
+    for (;;) {
+      std::size_t next = std::size_t(-1);
+      for (std::size_t w : m.tets[current]) {
+        if (w == edge[0] || w == edge[1]) continue;
+        Face f{edge[0], edge[1], w};
+        std::sort(f.begin(), f.end());
+        const auto& both = tets_of_face.at(f);
+        if (both.size() != 2) {
+          interior = false;
+          break;
+        }
+        const std::size_t other = both[0] == current ? both[1] : both[0];
+        if (other != previous) next = other;
+      }
+      if (!interior || next == tets[0]) break;
+      previous = current;
+      current = next;
+      ring.push_back(current);
+    }
+    if (!interior) continue;
+    REQUIRE(ring.size() == tets.size());
+    bool identity = true;
+    for (int k = 0; k < 3; ++k) {
+      int j = k, sign = 1;
+      for (std::size_t r = 0; r < ring.size(); ++r) {
+        const auto it = matching.find({ring[r], ring[(r + 1) % ring.size()]});
+        if (it == matching.end()) continue; // identity
+        sign *= it->second.sign[j];
+        j = it->second.target[j];
+      }
+      identity = identity && j == k && sign == 1;
+    }
+    if (!identity) out.insert(edge);
+  }
+  return out;
+}
+
+std::set<std::array<std::size_t, 2>> vertex_pairs(const std::vector<Singular_edge>& sing) {
+  std::set<std::array<std::size_t, 2>> out;
+  for (const Singular_edge& e : sing) out.insert(e.vertices);
+  return out;
+}
+
+std::string scratch_file(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("cgal_ext_test_singularities_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  return (dir / name).string();
+}
+
+} // namespace
+
+TEST_CASE("quarter turns about the edge: +1/4 and -1/4, at the edge, one curve", "[singularities]") {
+  for (double sense : {1.0, -1.0}) {
+    const auto s = field_on(grid(), twist(sense / 4, Eigen::Vector3d::UnitZ()));
+    const auto sing = singular_edges(*s->ff);
+    check_central_line(*s, sing, sense > 0 ? Singularity_type::plus_quarter : Singularity_type::minus_quarter,
+                       sense * 90);
+    for (const Singular_edge& e : sing) {
+      CHECK(e.valence == (sense > 0 ? 3 : 5));
+      CHECK(is_meshable(e.type));
+      CHECK(e.axis_angle_deg < 1e-9);
+      CHECK(std::abs(std::abs(e.axis(2)) - 1) < 1e-12);
+    }
+    const Singularity_graph g = singularity_graph(*s->ff, sing);
+    REQUIRE(g.curves.size() == 1);
+    CHECK(g.curves[0].edges.size() == 2);
+    CHECK(!g.curves[0].closed);
+    CHECK(g.curves[0].length == Approx(2));
+    CHECK((sense > 0 ? g.curves[0].plus_quarter_edges : g.curves[0].minus_quarter_edges) == 2);
+    CHECK(g.curves[0].non_meshable_edges == 0);
+    REQUIRE(g.nodes.size() == 2); // where the line meets the bottom and top faces
+    for (const Singular_node& n : g.nodes) {
+      CHECK(n.kind == Singular_node::Kind::boundary_end);
+      CHECK(n.degree == 1);
+      CHECK(n.on_boundary);
+      CHECK((n.position(2) == 0 || n.position(2) == 2));
+    }
+    CHECK(g.boundary_ends == 2);
+    CHECK(g.interior_ends + g.junctions + g.closed_curves == 0);
+  }
+}
+
+TEST_CASE("a singular line across the mesh: a zigzag curve of quarter turns, typed as one", "[singularities]") {
+  // Frames twisted by a quarter turn about a slanted line L (a frame axis
+  // along L): the discrete singular curve follows mesh edges that zigzag
+  // around L, some far from its direction and some stepping back, yet every
+  // edge is the same quarter turn about the curve.
+  const Eigen::Vector3d p0(2.9, 3.2, 0), dir = Eigen::Vector3d(0.25, 0.15, 1).normalized();
+  const Eigen::Vector3d u = dir.cross(Eigen::Vector3d::UnitX()).normalized(), v = dir.cross(u);
+  const Eigen::Matrix3d Q0 = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), dir).toRotationMatrix();
+  for (double sense : {1.0, -1.0}) {
+    const auto s = field_on(testing::kuhn_grid(6, 6, 4, 1.0), [&](const Eigen::Vector3d& c) {
+      const Eigen::Vector3d w = c - p0;
+      const double a = std::atan2(w.dot(v), w.dot(u));
+      return Eigen::Matrix3d(Eigen::AngleAxisd(sense * a / 4, dir).toRotationMatrix() * Q0);
+    });
+    const auto sing = singular_edges(*s->ff);
+    const Singularity_graph g = singularity_graph(*s->ff, sing);
+    double widest = 0;
+    for (const Singular_edge& e : sing) {
+      INFO("edge " << e.vertices[0] << "-" << e.vertices[1] << " " << singularity_type_name(e.type) << ", turn "
+                   << e.turn_deg << ", to the curve " << e.axis_angle_deg << " deg, to the edge " << e.edge_axis_angle_deg);
+      CHECK(e.type == (sense > 0 ? Singularity_type::plus_quarter : Singularity_type::minus_quarter));
+      CHECK(e.turn_deg == 90 * sense);
+      widest = std::max(widest, e.edge_axis_angle_deg);
+      // The edge is near L: its midpoint within one cell diagonal.
+      const Eigen::Vector3d w = e.midpoint - p0;
+      CHECK((w - w.dot(dir) * dir).norm() < std::sqrt(3.0));
+    }
+    INFO(sing.size() << " edges; widest angle between an edge and the turn's axis " << widest << " deg");
+    CHECK(widest > 60); // the curve does zigzag
+    REQUIRE(g.curves.size() == 1);
+    CHECK(g.curves[0].edges.size() == sing.size());
+    CHECK(g.boundary_ends == 2);
+    CHECK(g.junctions + g.interior_ends == 0);
+  }
+}
+
+TEST_CASE("non-meshable holonomies are flagged where they are", "[singularities]") {
+  SECTION("a quarter turn about an axis across the edge") {
+    const auto s = field_on(grid(), twist(0.25, Eigen::Vector3d::UnitX()));
+    const auto sing = singular_edges(*s->ff);
+    check_central_line(*s, sing, Singularity_type::quarter_across, 90);
+    for (const Singular_edge& e : sing) {
+      CHECK(!is_meshable(e.type));
+      CHECK(e.axis_angle_deg == Approx(90));
+      CHECK(std::abs(std::abs(e.axis(0)) - 1) < 1e-12);
+    }
+    const Singularity_graph g = singularity_graph(*s->ff, sing);
+    REQUIRE(g.curves.size() == 1);
+    CHECK(g.curves[0].non_meshable_edges == 2);
+  }
+  SECTION("a third of a turn about a diagonal of the frame's cube") {
+    const auto s = field_on(grid(), twist(1.0 / 3, Eigen::Vector3d(1, 1, 1)));
+    const auto sing = singular_edges(*s->ff);
+    check_central_line(*s, sing, Singularity_type::third, 120);
+    for (const Singular_edge& e : sing) CHECK(e.axis_angle_deg == Approx(std::acos(1 / std::sqrt(3.0)) * 180 / M_PI));
+  }
+  SECTION("a half turn about the edge") {
+    const auto s = field_on(grid(), twist(0.5, Eigen::Vector3d::UnitZ()));
+    check_central_line(*s, singular_edges(*s->ff), Singularity_type::half, 180);
+  }
+  SECTION("a half turn about a face diagonal of the frame") {
+    const auto s = field_on(grid(), twist(0.5, Eigen::Vector3d(1, 1, 0)));
+    check_central_line(*s, singular_edges(*s->ff), Singularity_type::half, 180);
+  }
+}
+
+TEST_CASE("singularity types do not depend on the numbering of the mesh", "[singularities]") {
+  // The same geometry numbered backwards, each tetrahedron's vertices in
+  // another order: CGAL's circulation starts elsewhere, and the edges are
+  // oriented the other way, but every edge keeps its type and turn.
+  for (const auto& [fraction, axis] : std::vector<std::pair<double, Eigen::Vector3d>>{
+           {0.25, Eigen::Vector3d::UnitZ()}, {-0.25, Eigen::Vector3d::UnitZ()}, {1.0 / 3, Eigen::Vector3d(1, 1, 1)},
+           {-1.0 / 3, Eigen::Vector3d(1, -1, 1)}, {0.25, Eigen::Vector3d::UnitY()}}) {
+    const testing::Test_mesh m = grid();
+    testing::Test_mesh r = m;
+    const std::size_t nv = m.points.size();
+    for (std::size_t v = 0; v < nv; ++v) r.points[nv - 1 - v] = m.points[v];
+    for (std::size_t t = 0; t < m.tets.size(); ++t) {
+      const auto& q = m.tets[m.tets.size() - 1 - t];
+      r.tets[t] = {nv - 1 - q[2], nv - 1 - q[0], nv - 1 - q[1], nv - 1 - q[3]}; // an even permutation
+    }
+    const auto a = field_on(m, twist(fraction, axis));
+    const auto b = field_on(r, twist(fraction, axis));
+    const auto sa = singular_edges(*a->ff), sb = singular_edges(*b->ff);
+    REQUIRE(sa.size() == 2);
+    REQUIRE(sb.size() == sa.size());
+    for (const Singular_edge& e : sa) {
+      const std::array<std::size_t, 2> mirrored{nv - 1 - e.vertices[1], nv - 1 - e.vertices[0]};
+      const auto f = std::find_if(sb.begin(), sb.end(), [&](const Singular_edge& x) { return x.vertices == mirrored; });
+      REQUIRE(f != sb.end());
+      CHECK(f->type == e.type);
+      CHECK(f->axis_angle_deg == Approx(e.axis_angle_deg).margin(1e-9));
+      if (e.type == Singularity_type::quarter_across) continue; // exactly across: no side, no orientation
+      CHECK(f->turn_deg == e.turn_deg);
+      CHECK((f->axis + e.axis).norm() < 1e-9); // oriented along the edge, which runs the other way now
+    }
+  }
+}
+
+TEST_CASE("the .perm file alone gives back exactly the singular edges", "[singularities][perm]") {
+  // A computed field on a Mesh_3 ball (many singular edges), and a field
+  // with a third of a turn around a chosen line.
+  Tetrahedralize_options mo;
+  mo.size = 0.25;
+  const IO::Medit_mesh ball = tetrahedralize_builtin("ball", mo);
+  testing::Test_mesh bm;
+  bm.points = ball.vertices;
+  bm.tets = ball.tetrahedra;
+  auto computed = std::make_unique<Setup>();
+  computed->m = bm;
+  build_triangulation_from_tets(computed->m.points, computed->m.tets, {}, computed->tr);
+  computed->field = std::make_unique<Field>(computed->tr, Eigen::Matrix3d::Identity().eval());
+  computed->ff = std::make_unique<Frames>(*computed->field);
+  computed->ff->compute();
+  const auto twisted = field_on(grid(), twist(1.0 / 3, Eigen::Vector3d(1, 1, 1)));
+  for (const Setup* s : {computed.get(), twisted.get()}) {
+    const Frame_field_matchings_3<Frames> matchings(*s->ff);
+    const auto sing = singular_edges(*s->ff, matchings);
+    const std::string path = scratch_file("field.perm");
+    IO::write_perm(path, matchings.perm_file(*s->ff));
+    const IO::Perm_file back = IO::read_perm(path);
+    CHECK(back.tets == s->m.tets.size());
+    INFO(sing.size() << " singular edges, " << back.faces.size() << " faces in the .perm file");
+    CHECK(!sing.empty());
+    CHECK(!back.faces.empty());
+    CHECK(singular_edges_from_perm(s->m, back) == vertex_pairs(sing));
+    // The listed faces say which .fra vector continues as which: with the
+    // identity metric (no transport), vector k of tet1 is closest to
+    // sign(p_k) times vector |p_k| of tet2; faces not listed match as they are.
+    std::set<std::pair<std::size_t, std::size_t>> listed;
+    for (const IO::Perm_face& f : back.faces) {
+      listed.insert({f.tet1, f.tet2});
+      const Eigen::Matrix3d G1 = s->ff->parameter_gradients(f.tet1), G2 = s->ff->parameter_gradients(f.tet2);
+      for (int k = 0; k < 3; ++k)
+        CHECK(G1.col(k).dot((f.p[k] > 0 ? 1.0 : -1.0) * G2.col(std::abs(f.p[k]) - 1)) > std::cos(M_PI / 4));
+    }
+    for (std::size_t i = 0; i < s->ff->size(); ++i)
+      for (int f = 0; f < 4; ++f) {
+        const std::int64_t j = s->ff->neighbor(i, f);
+        if (j <= std::int64_t(i) || listed.count({i, std::size_t(j)})) continue;
+        const Eigen::Matrix3d G1 = s->ff->parameter_gradients(i), G2 = s->ff->parameter_gradients(std::size_t(j));
+        for (int k = 0; k < 3; ++k) CHECK(G1.col(k).dot(G2.col(k)) > std::cos(M_PI / 4));
+      }
+    // Every listed face is an interior face of the mesh, listed once.
+    for (const IO::Perm_face& f : back.faces) {
+      int shared = 0;
+      for (std::size_t v : s->m.tets[f.tet1]) shared += int(std::count(s->m.tets[f.tet2].begin(), s->m.tets[f.tet2].end(), v));
+      CHECK(shared == 3);
+      CHECK(f.p != (std::array<int, 3>{1, 2, 3}));
+    }
+  }
+}
+
+TEST_CASE("singular curves partition the singular edges and end at nodes", "[singularities]") {
+  Tetrahedralize_options mo;
+  mo.size = 0.25;
+  const IO::Medit_mesh ball = tetrahedralize_builtin("ball", mo);
+  testing::Test_mesh bm;
+  bm.points = ball.vertices;
+  bm.tets = ball.tetrahedra;
+  auto s = std::make_unique<Setup>();
+  s->m = bm;
+  build_triangulation_from_tets(s->m.points, s->m.tets, {}, s->tr);
+  s->field = std::make_unique<Field>(s->tr, Eigen::Matrix3d::Identity().eval());
+  s->ff = std::make_unique<Frames>(*s->field);
+  s->ff->compute();
+  const auto sing = singular_edges(*s->ff);
+  const Singularity_graph g = singularity_graph(*s->ff, sing);
+  REQUIRE(!sing.empty());
+  std::map<std::size_t, int> degree;
+  for (const Singular_edge& e : sing) ++degree[e.vertices[0]], ++degree[e.vertices[1]];
+  std::set<std::size_t> node_vertices;
+  for (const Singular_node& n : g.nodes) {
+    node_vertices.insert(n.vertex);
+    CHECK(n.degree == degree[n.vertex]);
+    CHECK(n.degree != 2);
+  }
+  for (const auto& [v, d] : degree) CHECK((d == 2) == (node_vertices.count(v) == 0));
+  std::vector<int> seen(sing.size(), 0);
+  std::size_t closed = 0;
+  for (const Singular_curve& c : g.curves) {
+    REQUIRE(c.vertices.size() == c.edges.size() + 1);
+    for (std::size_t k = 0; k < c.edges.size(); ++k) {
+      ++seen[c.edges[k]];
+      const auto& e = sing[c.edges[k]].vertices;
+      CHECK(std::set<std::size_t>{c.vertices[k], c.vertices[k + 1]} == std::set<std::size_t>{e[0], e[1]});
+    }
+    for (std::size_t k = 1; k + 1 < c.vertices.size(); ++k) CHECK(degree[c.vertices[k]] == 2);
+    if (c.closed) {
+      ++closed;
+      CHECK(c.vertices.front() == c.vertices.back());
+    } else {
+      CHECK(node_vertices.count(c.vertices.front()) == 1);
+      CHECK(node_vertices.count(c.vertices.back()) == 1);
+    }
+    CHECK(c.plus_quarter_edges + c.minus_quarter_edges + c.non_meshable_edges == c.edges.size());
+  }
+  CHECK(closed == g.closed_curves);
+  CHECK(std::all_of(seen.begin(), seen.end(), [](int n) { return n == 1; }));
+  CHECK(g.boundary_ends + g.interior_ends + g.junctions == g.nodes.size());
+  CHECK(g.interior_ends == 0); // a smooth field's singular curves do not stop inside
+}
