@@ -184,6 +184,38 @@ TEST_CASE("generate with a constant metric: gradients are the rows of A, scaled 
   }
 }
 
+TEST_CASE("generate writes negatively oriented input tets positive into mesh.mesh", "[cli][generate]") {
+  // CubeCover and HexEx need positive tetrahedra with right-handed frames.
+  const auto out = work / "reoriented_out";
+  const std::string input = data_dir + "/reoriented.mesh";
+  const Run r = run("generate " + input + " -o " + out.string());
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.err.find("re-oriented") != std::string::npos);
+  const auto in = CGAL_ext::IO::read_medit_mesh(input);
+  const auto written = CGAL_ext::IO::read_medit_mesh((out / "mesh.mesh").string());
+  REQUIRE(written.tetrahedra.size() == in.tetrahedra.size());
+  CHECK(written.vertices == in.vertices);
+  auto volume = [](const CGAL_ext::IO::Medit_mesh& m, std::size_t t) {
+    const auto& a = m.vertices[m.tetrahedra[t][0]];
+    double e[3][3];
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) e[k][c] = m.vertices[m.tetrahedra[t][k + 1]][c] - a[c];
+    return e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+           e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+  };
+  std::size_t negative_in = 0;
+  for (std::size_t t = 0; t < in.tetrahedra.size(); ++t) {
+    negative_in += volume(in, t) < 0;
+    CHECK(volume(written, t) > 0);
+    auto a = in.tetrahedra[t], b = written.tetrahedra[t];
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    CHECK(a == b); // the same tetrahedron, in the same place
+  }
+  CHECK(negative_in > 0);
+}
+
 TEST_CASE("generate output does not depend on the thread count", "[cli][generate]") {
   const std::string expr = "'1 + x^2, 0.3 * x * y, 2 + y, 0, 0.1 * z, 1 + z^2'";
   const Run a = run("generate " + l_shape + " --metric-expr " + expr + " --threads 1 -o " + (work / "t1").string());

@@ -375,9 +375,18 @@ int command_generate(const std::vector<std::string>& args) {
   src.vertex_lines = mesh.vertex_lines;
   const Tet_mesh_build_report build =
       build_triangulation_from_tets(mesh.vertices, mesh.tetrahedra, mesh.tetrahedron_references, tr, src);
-  if (build.reoriented_tets)
-    std::fprintf(stderr, "[note] %zu negatively oriented tetrahedra were re-oriented (first: tetrahedron %zu)\n",
+  if (build.reoriented_tets) {
+    std::fprintf(stderr,
+                 "[note] %zu negatively oriented tetrahedra were re-oriented (first: tetrahedron %zu); mesh.mesh "
+                 "has them positive, as CubeCover and HexEx need\n",
                  build.reoriented_tets, build.reoriented_examples.front() + 1);
+    // As the triangulation holds them: vertices 3 and 4 swapped.
+    const auto orientation = Tr::Geom_traits().orientation_3_object();
+    for (auto& t : mesh.tetrahedra) {
+      auto P = [&](int k) { return Tr::Point(mesh.vertices[t[k]][0], mesh.vertices[t[k]][1], mesh.vertices[t[k]][2]); };
+      if (orientation(P(0), P(1), P(2), P(3)) == CGAL::NEGATIVE) std::swap(t[2], t[3]);
+    }
+  }
   if (build.unused_vertices) std::fprintf(stderr, "[note] %zu vertices are used by no tetrahedron\n", build.unused_vertices);
   stage("build triangulation", lap(), std::to_string(build.boundary_facets) + " boundary facets");
 
