@@ -53,6 +53,22 @@ std::unique_ptr<Setup> field_on(testing::Test_mesh m, const std::function<Eigen:
   return s;
 }
 
+// The field compute() makes on a Mesh_3 ball with the identity metric: a
+// boundary-aligned field on a ball is singular (the hairy ball).
+std::unique_ptr<Setup> computed_ball_field() {
+  Tetrahedralize_options mo;
+  mo.size = 0.25;
+  const IO::Medit_mesh ball = tetrahedralize_builtin("ball", mo);
+  auto s = std::make_unique<Setup>();
+  s->m.points = ball.vertices;
+  s->m.tets = ball.tetrahedra;
+  build_triangulation_from_tets(s->m.points, s->m.tets, {}, s->tr);
+  s->field = std::make_unique<Field>(s->tr, Eigen::Matrix3d::Identity().eval());
+  s->ff = std::make_unique<Frames>(*s->field);
+  s->ff->compute();
+  return s;
+}
+
 // A rotation by `fraction` of the azimuth about (2, 2) (a full turn around
 // the vertical line x = y = 2 turns the frames by fraction * 2 pi) about `axis`.
 std::function<Eigen::Matrix3d(const Eigen::Vector3d&)> twist(double fraction, const Eigen::Vector3d& axis) {
@@ -308,18 +324,7 @@ TEST_CASE("singularity types do not depend on the numbering of the mesh", "[sing
 TEST_CASE("the .perm file alone gives back exactly the singular edges", "[singularities][perm]") {
   // A computed field on a Mesh_3 ball (many singular edges), and a field
   // with a third of a turn around a chosen line.
-  Tetrahedralize_options mo;
-  mo.size = 0.25;
-  const IO::Medit_mesh ball = tetrahedralize_builtin("ball", mo);
-  testing::Test_mesh bm;
-  bm.points = ball.vertices;
-  bm.tets = ball.tetrahedra;
-  auto computed = std::make_unique<Setup>();
-  computed->m = bm;
-  build_triangulation_from_tets(computed->m.points, computed->m.tets, {}, computed->tr);
-  computed->field = std::make_unique<Field>(computed->tr, Eigen::Matrix3d::Identity().eval());
-  computed->ff = std::make_unique<Frames>(*computed->field);
-  computed->ff->compute();
+  const auto computed = computed_ball_field();
   const auto twisted = field_on(grid(), twist(1.0 / 3, Eigen::Vector3d(1, 1, 1)));
   for (const Setup* s : {computed.get(), twisted.get()}) {
     const Frame_field_matchings_3<Frames> matchings(*s->ff);
@@ -360,18 +365,7 @@ TEST_CASE("the .perm file alone gives back exactly the singular edges", "[singul
 }
 
 TEST_CASE("singular curves partition the singular edges and end at nodes", "[singularities]") {
-  Tetrahedralize_options mo;
-  mo.size = 0.25;
-  const IO::Medit_mesh ball = tetrahedralize_builtin("ball", mo);
-  testing::Test_mesh bm;
-  bm.points = ball.vertices;
-  bm.tets = ball.tetrahedra;
-  auto s = std::make_unique<Setup>();
-  s->m = bm;
-  build_triangulation_from_tets(s->m.points, s->m.tets, {}, s->tr);
-  s->field = std::make_unique<Field>(s->tr, Eigen::Matrix3d::Identity().eval());
-  s->ff = std::make_unique<Frames>(*s->field);
-  s->ff->compute();
+  const auto s = computed_ball_field();
   const auto sing = singular_edges(*s->ff);
   const Singularity_graph g = singularity_graph(*s->ff, sing);
   REQUIRE(!sing.empty());

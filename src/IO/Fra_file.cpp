@@ -3,6 +3,7 @@
 #include <CGAL_ext/IO/Fra_file.h>
 #include <CGAL_ext/IO/Medit_tokenizer.h>
 
+#include "cubecover_header.h"
 #include "write_file_atomically.h"
 
 #include <cmath>
@@ -30,13 +31,7 @@ void write_fra(const std::string& path, const std::vector<std::array<double, 9>>
 
 std::vector<std::array<double, 9>> read_fra(const std::string& path) {
   Medit_tokenizer tk(path);
-  const std::string_view word = tk.expect("the word FRA");
-  if (word != "FRA")
-    tk.fail("", "expected 'FRA', found '" + std::string(word.substr(0, 40)) +
-                    "': not a CubeCover frame field (.fra) file");
-  const std::int64_t version = tk.read_int("the .fra version");
-  if (version != 1)
-    tk.fail("", ".fra version " + std::to_string(version) + ": only version 1 is supported (as in CubeCover)");
+  internal::read_cubecover_header(tk, "FRA", ".fra", "frame field");
   const std::int64_t n = tk.read_int("the number of frames");
   if (n < 0) tk.fail("", "negative number of frames " + std::to_string(n));
   const std::int64_t vpt = tk.read_int("the number of vectors per frame");

@@ -3,6 +3,7 @@
 #include <CGAL_ext/IO/Medit_tokenizer.h>
 #include <CGAL_ext/IO/Perm_file.h>
 
+#include "cubecover_header.h"
 #include "write_file_atomically.h"
 
 #include <cstdint>
@@ -50,13 +51,7 @@ void write_perm(const std::string& path, const Perm_file& file) {
 
 Perm_file read_perm(const std::string& path) {
   Medit_tokenizer tk(path);
-  const std::string_view word = tk.expect("the word PERM");
-  if (word != "PERM")
-    tk.fail("", "expected 'PERM', found '" + std::string(word.substr(0, 40)) +
-                    "': not a CubeCover face matching (.perm) file");
-  const std::int64_t version = tk.read_int("the .perm version");
-  if (version != 1)
-    tk.fail("", ".perm version " + std::to_string(version) + ": only version 1 is supported (as in CubeCover)");
+  internal::read_cubecover_header(tk, "PERM", ".perm", "face matching");
   const std::int64_t tets = tk.read_int("the number of tetrahedra");
   if (tets < 0) tk.fail("", "negative number of tetrahedra " + std::to_string(tets));
   const std::int64_t n = tk.read_int("the number of faces");
