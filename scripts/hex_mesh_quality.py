@@ -220,6 +220,11 @@ def norm(a):
     return math.sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2])
 
 
+def corner_sum(P, plus, minus):
+    """sum of P[i] for i in plus minus sum of P[i] for i in minus."""
+    return tuple(sum(P[i][k] for i in plus) - sum(P[i][k] for i in minus) for k in range(3))
+
+
 def lincomb(*terms):
     """sum of c * p over (c, p) pairs."""
     return tuple(sum(c * p[k] for c, p in terms) for k in range(3))
@@ -254,12 +259,8 @@ def scaled_jacobians(P):
         l = norm(a) * norm(b) * norm(c)
         return (det3(a, b, c) / l, False) if l > 0 else (0.0, True)
     corner = [frame(sub(P[a], P[c]), sub(P[b], P[c]), sub(P[d], P[c])) for c, a, b, d in CORNERS]
-    centre = frame(lincomb((1, P[1]), (1, P[2]), (1, P[5]), (1, P[6]),
-                           (-1, P[0]), (-1, P[3]), (-1, P[4]), (-1, P[7])),
-                   lincomb((1, P[2]), (1, P[3]), (1, P[6]), (1, P[7]),
-                           (-1, P[0]), (-1, P[1]), (-1, P[4]), (-1, P[5])),
-                   lincomb((1, P[4]), (1, P[5]), (1, P[6]), (1, P[7]),
-                           (-1, P[0]), (-1, P[1]), (-1, P[2]), (-1, P[3])))
+    centre = frame(corner_sum(P, (1, 2, 5, 6), (0, 3, 4, 7)), corner_sum(P, (2, 3, 6, 7), (0, 1, 4, 5)),
+                   corner_sum(P, (4, 5, 6, 7), (0, 1, 2, 3)))
     corners_min = min(v for v, _ in corner)
     return (min(corners_min, centre[0]), corners_min,
             centre[1] or any(d for _, d in corner))
@@ -269,11 +270,8 @@ def hex_volume(P):
     """Signed volume of the trilinear hex X = a + bu + cv + dw + e uv + f vw
     + g uw + h uvw over [0,1]^3 (P in VTK order)."""
     b, c, d = sub(P[1], P[0]), sub(P[3], P[0]), sub(P[4], P[0])
-    e = lincomb((1, P[2]), (-1, P[1]), (-1, P[3]), (1, P[0]))
-    f = lincomb((1, P[7]), (-1, P[3]), (-1, P[4]), (1, P[0]))
-    g = lincomb((1, P[5]), (-1, P[1]), (-1, P[4]), (1, P[0]))
-    h = lincomb((1, P[6]), (-1, P[2]), (-1, P[5]), (-1, P[7]),
-                (1, P[1]), (1, P[3]), (1, P[4]), (-1, P[0]))
+    e, f = corner_sum(P, (2, 0), (1, 3)), corner_sum(P, (7, 0), (3, 4))
+    g, h = corner_sum(P, (5, 0), (1, 4)), corner_sum(P, (6, 1, 3, 4), (2, 5, 7, 0))
     vol = 0.0
     for u in GAUSS:
         for v in GAUSS:

@@ -4,7 +4,7 @@
 # (or sudo) on Debian bookworm.
 set -euo pipefail
 
-packages=(build-essential cmake libcgal-dev libeigen3-dev libboost-dev catch2 libtbb-dev libgmp-dev libmpfr-dev libmuparser-dev)
+packages=(build-essential cmake libcgal-dev libeigen3-dev libboost-dev catch2 libtbb-dev libgmp-dev libmpfr-dev libmuparser-dev python3)
 
 missing=()
 for p in "${packages[@]}"; do

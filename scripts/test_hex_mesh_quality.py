@@ -85,8 +85,8 @@ def grid(nx, ny, nz, hx=1.0, hy=1.0, hz=1.0):
     return points, hexes
 
 
-# The box [0,2]x[0,1]x[0,1] as a Medit tet mesh (each unit cube as 6 tets
-# around its diagonal), with comments, counts on the next line, and sections
+# The box [0,2]x[0,1]x[0,1] as a Medit tet mesh (each unit cube as 6
+# positively oriented tets around its diagonal), with comments, counts on the next line, and sections
 # that must be skipped.
 BOX_MESH = """MeshVersionFormatted
 2
@@ -112,8 +112,8 @@ Edges 1
 1 2 3
 Tetrahedra
 12
-1 2 5 11 0   1 2 8 11 0   1 4 5 11 0   1 4 10 11 0   1 7 8 11 0   1 7 10 11 0
-2 3 6 12 0   2 3 9 12 0   2 5 6 12 0   2 5 11 12 0   2 8 9 12 0   2 8 11 12 0
+1 2 5 11 0   1 8 2 11 0   1 5 4 11 0   1 4 10 11 0   1 7 8 11 0   1 10 7 11 0
+2 3 6 12 0   2 9 3 12 0   2 6 5 12 0   2 5 11 12 0   2 8 9 12 0   2 11 8 12 0
 End
 """
 
@@ -192,17 +192,25 @@ class HexMeshQualityTest(unittest.TestCase):
         self.assertAlmostEqual(r["scaled_jacobian"]["min"], 2.5 / 2.75 ** 1.5, places=14)
         self.assertEqual(r["scaled_jacobian"]["count_lt_0_5"], 0)
 
-    def test_centre_frame_is_included(self):
-        # a hex whose corner frames are all right-handed and orthogonal-ish can
-        # only be judged worse at the centre through the min over 9 frames:
-        # check the min really takes the centre value when it is smallest
-        P = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
-        self.assertEqual(hmq.scaled_jacobians(P)[0], 1.0)
-        # collapsed edge 6-7: a zero-length frame vector counts 0 (Verdict: huge)
+    def test_centre_frame_counts(self):
+        # a tangled hex (top edge 6-7 crossed) whose centre frame is worse than
+        # every corner: principal axes (-1,0,0), (1,4,0), (1,0,4) give -16/17
+        # (VTK's vtkMeshQuality agrees), the corners only -0.2
+        P = list(UNIT_CUBE)
+        P[6], P[7] = (-1, 1, 1), (3, 1, 1)
+        sj, corners, _ = hmq.scaled_jacobians(P)
+        self.assertAlmostEqual(sj, -16 / 17, places=14)
+        self.assertAlmostEqual(corners, -0.2, places=14)
+
+    def test_collapsed_edge_counts_zero(self):
+        # a zero-length frame vector counts 0 (Verdict would return 1e30)
+        P = list(UNIT_CUBE)
         P[6] = P[7]
         sj, _, degenerate = hmq.scaled_jacobians(P)
         self.assertEqual(sj, 0.0)
         self.assertTrue(degenerate)
+        r = self.report(P, [list(range(8))])
+        self.assertEqual((r["scaled_jacobian"]["degenerate"], r["scaled_jacobian"]["count_le_0"]), (1, 1))
 
     # --- blocks, coverage, edge statistics
 
@@ -277,23 +285,26 @@ class HexMeshQualityTest(unittest.TestCase):
     def test_errors(self):
         self.assertError([self.path("missing.ovm")], "missing.ovm", "No such file")
         self.assertError([self.path("a.ovm", "OFF\n3 1 0\n")], "a.ovm", "OVM ASCII")
-        text = ovm_text(*grid(1, 1, 1)[:1], [hex_loops(list(range(8)))])
+        points, hexes = grid(1, 1, 1)
+        text = ovm_text(points, [hex_loops(hexes[0])])
         self.assertError([self.path("b.ovm", text[:text.index("Polyhedra") + 12])],
                          "b.ovm", "unexpected end of file")
-        bad_id = text.rstrip("\n").rsplit(" ", 1)[0] + " 99\n"
+        bad_id = text.rstrip("\n").rsplit(" ", 1)[0] + " 99\n"  # only 12 half-faces
         self.assertError([self.path("c.ovm", bad_id)], "c.ovm", "half-face id")
-        swapped = text.replace("Edges\n12\n0 1\n", "Edges\n12\n1 0\n")  # breaks face loops
-        self.assertNotEqual(swapped, text)
-        self.assertError([self.path("d.ovm", swapped)], "d.ovm", "closed loop")
+        lines = text.split("\n")
+        i = lines.index("Edges") + 2
+        lines[i] = " ".join(reversed(lines[i].split()))  # breaks the loops of its faces
+        self.assertError([self.path("d.ovm", "\n".join(lines))], "d.ovm", "closed loop")
         tet_only = ovm_text([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)],
                             [[[0, 1, 2], [0, 3, 1], [1, 3, 2], [2, 3, 0]]])
         self.assertError([self.path("e.ovm", tet_only)], "e.ovm", "no hexahedral cells")
         good = self.path("good.ovm", text)
-        self.assertError([good, "--tets", self.path("u.mesh", "MeshVersionFormatted 2\nDimension 3\n"
-                                                    "Vertices 0\nPrisms7 0\nEnd\n")],
-                         "u.mesh:5", "Prisms7")
-        self.assertError([good, "--tets", self.path("v.mesh", BOX_MESH.replace("2 8 11 12 0", "2 8 11 13 0"))],
-                         "v.mesh", "vertex number")
+        unknown = "MeshVersionFormatted 2\nDimension 3\nVertices 0\nPrisms7 0\nEnd\n"
+        self.assertError([good, "--tets", self.path("u.mesh", unknown)], "u.mesh:4", "Prisms7")
+        bad_tet = BOX_MESH.replace("2 11 8 12 0", "2 11 8 13 0")
+        self.assertError([good, "--tets", self.path("v.mesh", bad_tet)], "v.mesh:", "vertex number")
+        truncated = BOX_MESH[:BOX_MESH.index("Tetrahedra") + 15]
+        self.assertError([good, "--tets", self.path("w.mesh", truncated)], "w.mesh", "end of file")
 
     def test_vtu(self):
         points, hexes = grid(2, 1, 1)
@@ -307,10 +318,17 @@ class HexMeshQualityTest(unittest.TestCase):
         self.assertEqual(arrays["offsets"], ["8", "16"])
         xyz = [float(v) for v in arrays["Points"]]
         conn = [int(v) for v in arrays["connectivity"]]
-        for c in range(2):  # VTK order: the corners of cube c in UNIT_CUBE order
-            got = [tuple(xyz[3 * v:3 * v + 3]) for v in conn[8 * c:8 * c + 8]]
-            want = [(x + c, y, z) for x, y, z in UNIT_CUBE]
-            self.assertEqual(got, [tuple(map(float, p)) for p in want])
+        cubes = set()
+        for c in range(2):
+            # VTK order (any of the 24 rotations of the labels): p1-p0, p3-p0,
+            # p4-p0 a right-handed frame, the other corners their sums
+            P = [tuple(xyz[3 * v:3 * v + 3]) for v in conn[8 * c:8 * c + 8]]
+            a, b, d = (hmq.sub(P[i], P[0]) for i in (1, 3, 4))
+            self.assertEqual(hmq.det3(a, b, d), 1.0)
+            for i, (ka, kb, kd) in enumerate(UNIT_CUBE):
+                self.assertEqual(P[i], tuple(P[0][k] + ka * a[k] + kb * b[k] + kd * d[k] for k in range(3)))
+            cubes.add(min(P))
+        self.assertEqual(cubes, {(0.0, 0.0, 0.0), (1.0, 0.0, 0.0)})
         self.assertEqual([float(v) for v in arrays["scaled_jacobian"]], [1.0, 1.0])
 
 
