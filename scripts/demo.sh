@@ -2,8 +2,8 @@
 # Installs the dependencies, builds, and runs the main job on the built-in
 # default input: a box with a cylindrical hole, meshed by CGAL Mesh_3, with an
 # anisotropic metric that varies in space (it turns and stretches the frames),
-# scaled to hexahedra of edge 0.2 where the formula gives the identity
-# (--hex-size 0.2: about 3300 hexahedra, 0.05 to 0.16 long).
+# scaled by --hex-size 0.2 (hex edges 0.2 / sqrt(eigenvalue of the formula):
+# about 3300 hexahedra, 0.05 to 0.2 long).
 # `metric-frames generate` computes the frame field in that metric, its
 # singularities, and writes frames.fra and frames.perm (CubeCover's
 # integer-grid map), mesh.mesh, frames.vtu and singularities.vtu (ParaView)

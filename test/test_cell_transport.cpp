@@ -300,3 +300,28 @@ TEST_CASE("the depth cap is reported", "[transport]") {
   opt.min_step = 1.0 / 8;
   CHECK_FALSE(CGAL_ext::integrate_transport(u, opt).converged);
 }
+
+TEST_CASE("a generator that is not finite is an error, not an endless loop", "[transport]") {
+  // A NaN error estimate used to make the step NaN, and no step was ever accepted.
+  for (Transport_scheme s : {Transport_scheme::trapezoid, Transport_scheme::magnus}) {
+    Transport_options opt;
+    opt.scheme = s;
+    auto nan_after_half = [](double t) { return t > 0.5 ? V3(std::nan(""), 0, 0) : V3(1, 2, 3); };
+    CHECK_THROWS_AS(CGAL_ext::integrate_transport(nan_after_half, opt), std::domain_error);
+    auto infinite = [](double) { return V3(0, HUGE_VAL, 0); };
+    CHECK_THROWS_AS(CGAL_ext::integrate_transport(infinite, opt), std::domain_error);
+  }
+}
+
+TEST_CASE("a tolerance below what double resolves costs a few steps, at the accuracy of double", "[transport]") {
+  auto u = [](double t) { return V3(std::cos(3 * t), std::sin(2 * t), 0.5 + t * t); };
+  Transport_options fine, absurd;
+  fine.tolerance = 1e-12;
+  absurd.tolerance = 1e-20;
+  const CGAL_ext::Transport_result reference = CGAL_ext::integrate_transport(u, fine);
+  const CGAL_ext::Transport_result r = CGAL_ext::integrate_transport(u, absurd);
+  INFO(r.evaluations << " evaluations at 1e-20, " << reference.evaluations << " at 1e-12");
+  CHECK(r.evaluations < 20 * reference.evaluations); // not 2^22 smallest steps
+  CHECK(distance(r.rotation, reference.rotation) <= 1e-12);
+  CHECK(r.error_estimate <= 1e-13);
+}

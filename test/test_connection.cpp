@@ -104,3 +104,24 @@ TEST_CASE("connection of the identity metric", "[connection]") {
     CHECK((lhs - C.col(i)).norm() <= 1e-14);
   }
 }
+
+TEST_CASE("the connection does not depend on the scale of A, down to 1e-150 I and up to 1e150 I", "[connection]") {
+  // W(s A, s curl) = W(A, curl). By a power of two it is the same bits; at
+  // scales where det(A) alone would underflow or overflow it stays finite.
+  Random r(7);
+  for (int k = 0; k < 50; ++k) {
+    const M3 A = CGAL_ext::sqrt_spd(r.spd(1e-2, 1e2));
+    const M3 curl = r.matrix(1);
+    const M3 W = CGAL_ext::connection_one_form(A, curl);
+    for (int e : {-500, -60, 3, 60, 500}) {
+      const double s = std::ldexp(1.0, e);
+      CHECK(CGAL_ext::connection_one_form(s * A, s * curl) == W);
+    }
+    for (double s : {1e-150, 1e-100, 1e100, 1e150}) {
+      const M3 Ws = CGAL_ext::connection_one_form(s * A, s * curl);
+      INFO("scale " << s);
+      REQUIRE(Ws.allFinite());
+      CHECK((Ws - W).norm() <= 1e-13 * W.norm());
+    }
+  }
+}

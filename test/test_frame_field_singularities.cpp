@@ -321,6 +321,143 @@ TEST_CASE("singularity types do not depend on the numbering of the mesh", "[sing
   }
 }
 
+TEST_CASE("the direction of a closed curve is taken along it, without wrapping around", "[singularities]") {
+  // Regular polygons of n edges as closed singular curves: the stretch
+  // around each edge has two distinct ends, and its chord runs along the
+  // edge (it wrapped around short loops, pointing against the edge for n = 3
+  // and 4 and vanishing for n = 5).
+  for (std::size_t n = 3; n <= 9; ++n) {
+    std::vector<std::array<std::size_t, 2>> edges;
+    std::vector<Eigen::Vector3d> p;
+    for (std::size_t k = 0; k < n; ++k) {
+      edges.push_back({std::min(k, (k + 1) % n), std::max(k, (k + 1) % n)});
+      p.emplace_back(std::cos(2 * M_PI * k / n), std::sin(2 * M_PI * k / n), 0);
+    }
+    const auto incident = internal::edges_at_vertices(edges);
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto ends = internal::curve_stretch(edges, incident, k, singular_curve_direction_span);
+      INFO("n = " << n << ", edge " << edges[k][0] << "-" << edges[k][1]);
+      CHECK(ends[0] != ends[1]);
+      const Eigen::Vector3d chord = p[ends[1]] - p[ends[0]], edge = p[edges[k][1]] - p[edges[k][0]];
+      CHECK(chord.dot(edge) > 0.4 * chord.norm() * edge.norm());
+    }
+  }
+  // An open chain stops at its ends; a loop through a junction stops there.
+  const std::vector<std::array<std::size_t, 2>> chain{{0, 1}, {1, 2}, {2, 3}, {3, 4}, {4, 5}};
+  const auto chain_incident = internal::edges_at_vertices(chain);
+  CHECK(internal::curve_stretch(chain, chain_incident, 0, 2) == (std::array<std::size_t, 2>{0, 3}));
+  CHECK(internal::curve_stretch(chain, chain_incident, 2, 2) == (std::array<std::size_t, 2>{0, 5}));
+  CHECK(internal::curve_stretch(chain, chain_incident, 2, 1) == (std::array<std::size_t, 2>{1, 4}));
+}
+
+TEST_CASE("singularity graph: closed loops, curves from a junction back to it, boundary ends", "[singularities]") {
+  // Edges given directly on the 4 x 4 x 2 grid (vertex (i, j, k) has index
+  // (k * 5 + j) * 5 + i): the graph needs only positions and the boundary.
+  const auto s = field_on(grid(), twist(0, Eigen::Vector3d::UnitZ()));
+  auto id = [](std::size_t i, std::size_t j, std::size_t k) { return (k * 5 + j) * 5 + i; };
+  auto edge = [](std::size_t a, std::size_t b) {
+    Singular_edge e;
+    e.vertices = {std::min(a, b), std::max(a, b)};
+    e.type = Singularity_type::minus_quarter;
+    return e;
+  };
+  std::vector<Singular_edge> edges;
+  // A closed square loop in the plane k = 1, around (2, 2): all interior vertices.
+  const std::size_t loop[4] = {id(1, 1, 1), id(3, 1, 1), id(3, 3, 1), id(1, 3, 1)};
+  for (int m = 0; m < 4; ++m) edges.push_back(edge(loop[m], loop[(m + 1) % 4]));
+  // Two loops through the junction (2, 2, 1)... the centre of the square, plus
+  // a curve from it down to the boundary vertex (2, 2, 0).
+  const std::size_t J = id(2, 2, 1);
+  edges.push_back(edge(J, id(2, 3, 1)));
+  edges.push_back(edge(id(2, 3, 1), id(1, 2, 1)));
+  edges.push_back(edge(id(1, 2, 1), J));
+  edges.push_back(edge(J, id(3, 2, 1)));
+  edges.push_back(edge(id(3, 2, 1), id(2, 1, 1)));
+  edges.push_back(edge(id(2, 1, 1), J));
+  edges.push_back(edge(J, id(2, 2, 0)));
+  std::sort(edges.begin(), edges.end(), [](const Singular_edge& a, const Singular_edge& b) { return a.vertices < b.vertices; });
+  const Singularity_graph g = singularity_graph(*s->ff, edges);
+  CHECK(g.closed_curves == 1);
+  CHECK(g.junctions == 1);
+  CHECK(g.boundary_ends == 1);
+  CHECK(g.interior_ends == 0);
+  REQUIRE(g.nodes.size() == 2);
+  CHECK(g.nodes[0].vertex == id(2, 2, 0));
+  CHECK(g.nodes[0].kind == Singular_node::Kind::boundary_end);
+  CHECK(g.nodes[1].vertex == J);
+  CHECK(g.nodes[1].degree == 5);
+  REQUIRE(g.curves.size() == 4);
+  std::size_t through_junction = 0, total = 0;
+  for (const Singular_curve& c : g.curves) {
+    total += c.edges.size();
+    if (c.closed) {
+      CHECK(c.edges.size() == 4);
+      CHECK(c.length == Approx(8));
+      CHECK(c.vertices.front() == c.vertices.back());
+    } else if (c.vertices.front() == J && c.vertices.back() == J) {
+      ++through_junction;
+      CHECK(c.edges.size() == 3);
+    } else {
+      CHECK(c.edges.size() == 1); // the junction and the boundary vertex, in either order
+    }
+  }
+  CHECK(through_junction == 2);
+  CHECK(total == edges.size());
+}
+
+TEST_CASE("matchings compare frames after the transport from the first tetrahedron to the second", "[singularities][perm]") {
+  // A metric with a sharp bump at one vertex makes face transports of tens of
+  // degrees. Frames transported exactly across a face whose transport
+  // T = T(i->j) turns by about 50 degrees (R_j = T R_i) must match by the
+  // exact element canonical(R_j)^T T canonical(R_i); with T^T in its place
+  // they would be 100 degrees apart.
+  testing::Test_mesh m = testing::kuhn_grid(3, 3, 3, 1.0);
+  auto s = std::make_unique<Setup>();
+  s->m = m;
+  build_triangulation_from_tets(s->m.points, s->m.tets, {}, s->tr);
+  s->field = std::make_unique<Field>(s->tr, [](const Tr::Point& p) {
+    const double r2 = (p.x() - 1) * (p.x() - 1) + (p.y() - 1) * (p.y() - 1) + (p.z() - 1) * (p.z() - 1);
+    return Eigen::Matrix3d((r2 < 1e-12 ? 1e4 : 1.0) * Eigen::Vector3d(1, 2, 3).asDiagonal().toDenseMatrix());
+  });
+  s->ff = std::make_unique<Frames>(*s->field);
+  s->ff->prepare();
+  std::size_t bi = 0;
+  int bf = -1;
+  double chosen = 0;
+  for (std::size_t i = 0; i < s->ff->size(); ++i)
+    for (int f = 0; f < 4; ++f) {
+      const std::int64_t j = s->ff->neighbor(i, f);
+      if (j < 0) continue;
+      const int fj = s->ff->cell(std::size_t(j))->index(s->ff->cell(i));
+      const double a = rotation_angle(s->ff->transport_into(std::size_t(j), fj)) * 180 / M_PI;
+      if (std::abs(a - 50) < std::abs(chosen - 50)) chosen = a, bi = i, bf = f;
+    }
+  INFO("face transport " << chosen << " deg");
+  REQUIRE(std::abs(chosen - 50) < 10);
+  const std::size_t bj = std::size_t(s->ff->neighbor(bi, bf));
+  const int fj = s->ff->cell(bj)->index(s->ff->cell(bi));
+  const Eigen::Matrix3d T = s->ff->transport_into(bj, fj);
+  const Eigen::Matrix3d R0 = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
+  s->ff->set_rotations([&](std::size_t i) { return Eigen::Matrix3d(i == bj ? Eigen::Matrix3d(T * R0) : R0); });
+  const Frame_field_matchings_3<Frames> matchings(*s->ff);
+  const int expected = octahedral_group_index(s->ff->rotation(bj).transpose() * T * s->ff->rotation(bi), 1e-9);
+  REQUIRE(expected >= 0);
+  CHECK(matchings.index(bi, bf) == expected);
+  CHECK(matchings.index(bj, fj) == Frame_field_matchings_3<Frames>::inverse_index(expected));
+  // The .perm line of that face says the same, vector by vector.
+  const IO::Perm_file perm = matchings.perm_file(*s->ff);
+  const auto line = std::find_if(perm.faces.begin(), perm.faces.end(), [&](const IO::Perm_face& f) {
+    return f.tet1 == std::min(bi, bj) && f.tet2 == std::max(bi, bj);
+  });
+  if (expected == 0) {
+    CHECK(line == perm.faces.end());
+  } else {
+    REQUIRE(line != perm.faces.end());
+    CHECK(line->p == Frame_field_matchings_3<Frames>::signed_permutation(bi < bj ? expected
+                                                                                 : Frame_field_matchings_3<Frames>::inverse_index(expected)));
+  }
+}
+
 TEST_CASE("the .perm file alone gives back exactly the singular edges", "[singularities][perm]") {
   // A computed field on a Mesh_3 ball (many singular edges), and a field
   // with a third of a turn around a chosen line.

@@ -413,3 +413,21 @@ TEST_CASE("the PL transport in a shrinking tet converges to the smooth transport
     if (i > 0) CHECK(angles[i - 1] / angles[i] > 1.8); // and the angle is first order
   }
 }
+
+TEST_CASE("a tet that is flat in double precision is an input error naming it", "[metric_field]") {
+  // Exactly positively oriented, but its volume (1e-330 / 6) underflows.
+  const double e = 1e-110;
+  const std::vector<std::array<double, 3>> points{{0, 0, 0}, {e, 0, 0}, {0, e, 0}, {0, 0, e}, {e, e, e}};
+  const std::vector<std::array<std::size_t, 4>> tets{{0, 1, 2, 3}, {1, 2, 3, 4}};
+  Tr tr;
+  CGAL_ext::build_triangulation_from_tets(points, tets, {}, tr);
+  const CGAL_ext::Metric_field_3<Tr> field(tr, Eigen::Matrix3d::Identity().eval());
+  try {
+    field.precompute();
+    FAIL("no error for a tetrahedron of volume 1e-330");
+  } catch (const CGAL_ext::Input_error& err) {
+    INFO(err.what());
+    CHECK(err.element().rfind("tetrahedron ", 0) == 0);
+    CHECK(err.problem().find("too flat for double precision") != std::string::npos);
+  }
+}

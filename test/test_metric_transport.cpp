@@ -368,6 +368,15 @@ TEST_CASE("leaving a non-convex domain, or starting outside, is an error, never 
   const auto far = transport(Point(6, 6, 5), Point(6, 6, 500));
   CHECK(!far.ok);
   CHECK(far.message.find("the end point is outside the domain") == 0);
+  // A gap fails the segment before anything is integrated, however far out
+  // the end point (the in-domain stretch of a pair reaching 1e150 used to be
+  // integrated at a tolerance share below what double resolves).
+  CHECK(to_outside.evaluations == 0);
+  CHECK(far.evaluations == 0);
+  const auto very_far = transport(Point(6, 6, 5), Point(-2, 10, 1e150));
+  CHECK(!very_far.ok);
+  CHECK(very_far.evaluations == 0);
+  CHECK(very_far.message.find("the end point is outside the domain") == 0);
   // Along the re-entrant edge x = y = 12 (on the boundary, inside the closed domain): fine.
   const auto along = transport(Point(12, 12, 1), Point(12, 12, 23));
   CHECK(along.ok);

@@ -6,8 +6,8 @@
 //
 // The shipped input is Gmsh's unit box with a cylindrical hole around the
 // vertical line x = y = 0.5. Unit length in the metric is one hex edge; the
-// metric asks for hexes of edge h = 0.1 along x and z and h/2 along y, that
-// grow with z: g = diag(1, 4, 1) (1 + z)^2 / h^2.
+// metric asks for hexes of edge h / (1 + z) along x and z and half that
+// along y, h = 0.1, smaller towards the top: g = diag(1, 4, 1) (1 + z)^2 / h^2.
 // 1. compute() runs set-up, face transports, linear initialisation,
 //    projection and L-BFGS refinement, printing one line per stage.
 // 2. The frames F = A^-1 R are g-orthonormal: F^T g F = I; the parameter

@@ -17,7 +17,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace CGAL_ext {
 
@@ -126,6 +128,21 @@ inline Eigen::Matrix3d reorthonormalized(const Eigen::Matrix3d& R) {
   return 0.5 * R * (3 * Eigen::Matrix3d::Identity() - R.transpose() * R);
 }
 
+// The angle between two computations of the same rotation of angle `theta`
+// that rounding alone can produce: a few ulps of `theta`, and of the unit
+// entries. An error estimate below it says nothing more, so a step is
+// accepted there whatever the tolerance: tolerances below what double
+// resolves (1e-20, or a tiny share of a long path) end in a few steps at
+// the accuracy of double instead of shrinking steps to the smallest one.
+inline double rounding_floor(double theta) { return 16 * std::numeric_limits<double>::epsilon() * (1 + theta); }
+
+// A NaN error estimate means a NaN or infinite generator: no step size can help.
+inline void check_finite_generator(double estimate, double t0, double t1) {
+  if (!std::isfinite(estimate))
+    throw std::domain_error("integrate_transport: the rotation generator is not finite on [" + std::to_string(t0) +
+                            ", " + std::to_string(t1) + "]");
+}
+
 // Thesis scheme: T(t0->t1) against T(tm->t1) T(t0->tm). Local error of the
 // trapezoid piece is O(h^3), so the two-piece product is about 4 times better
 // than the one-piece one, and its error is about |difference| / 3.
@@ -141,7 +158,8 @@ Eigen::Matrix3d trapezoid_piece(Generator& u, double t0, double t1, const Eigen:
   const Eigen::Matrix3d Tm1 = rotation_exp((0.25 * h) * (um + u1));
   const Eigen::Matrix3d fine = Tm1 * T0m;
   const double estimate = rotation_angle(T01.transpose() * fine) / 3;
-  const bool ok = estimate <= opt.tolerance * h;
+  check_finite_generator(estimate, t0, t1);
+  const bool ok = estimate <= std::max(opt.tolerance * h, rounding_floor(rotation_angle(fine)) / 3);
   if (ok || depth >= opt.max_depth) {
     if (!ok) res.converged = false;
     res.error_estimate += estimate;
@@ -194,8 +212,13 @@ Eigen::Matrix3d magnus4_step(Generator& u, double t, double h, Transport_result&
 /// \tparam Generator a callable `Eigen::Vector3d(double t)`
 /// \param u the rotation generator, evaluated for `t` in `[0, 1]` only
 /// \param opt the scheme and the tolerance in radians (see `Transport_options`)
+/// A step whose estimate is at the level of rounding (a few ulps of its
+/// rotation angle) is accepted whatever the tolerance, so a tolerance below
+/// what double resolves costs a few steps, not the smallest step everywhere.
+///
 /// \returns the rotation `R(1)`, the error estimate and the evaluation count
 /// \throws std::invalid_argument if the tolerance is not positive and finite
+/// \throws std::domain_error if the generator is not finite (NaN or infinite)
 template <class Generator>
 Transport_result integrate_transport(Generator&& u, const Transport_options& opt = {}) {
   if (!(opt.tolerance > 0) || !std::isfinite(opt.tolerance))
@@ -220,7 +243,8 @@ Transport_result integrate_transport(Generator&& u, const Transport_options& opt
     const Eigen::Matrix3d second = internal::magnus4_step(u, t + 0.5 * h, 0.5 * h, res);
     const Eigen::Matrix3d fine = second * first;
     const double estimate = rotation_angle(coarse.transpose() * fine) / 15;
-    const double allowed = opt.tolerance * h;
+    internal::check_finite_generator(estimate, t, t + h);
+    const double allowed = std::max(opt.tolerance * h, internal::rounding_floor(rotation_angle(fine)) / 15);
     const bool ok = estimate <= allowed;
     if (ok || h <= min_step) {
       if (!ok) res.converged = false;

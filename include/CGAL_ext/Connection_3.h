@@ -10,6 +10,8 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 
+#include <cmath>
+
 namespace CGAL_ext {
 
 /// \ingroup PkgCGALExtMetric
@@ -63,12 +65,22 @@ inline Eigen::Matrix<double, 9, 9> connection_system_matrix(const Eigen::Matrix3
 /// About 80 flops, against about 500 for a 9x9 LU. A zero curl gives exactly
 /// `W == 0`.
 ///
+/// `W` does not change when `A` and its curl are scaled together (`N`
+/// scales by `1/s`, `A` by `s`), so both are first divided by the power of
+/// two nearest their largest entry: exact, so the result is the same bits
+/// where `det(A)` is in double's range, and it stays finite for any finite
+/// `A`, `1e-150 I` and `1e150 I` included (where `det(A)` alone would
+/// underflow or overflow).
+///
 /// \param A the metric square root `g^{1/2}` at the point (3x3, symmetric positive definite)
 /// \param curlA the 3x3 matrix whose column `i` is `curl` of column `i` of `A` (MATH.md section 2)
 /// \returns `W` (3x3)
 inline Eigen::Matrix3d connection_one_form(const Eigen::Matrix3d& A, const Eigen::Matrix3d& curlA) {
-  const Eigen::Matrix3d N = (curlA.transpose() * A) / A.determinant();
-  return A * (0.5 * N.trace() * Eigen::Matrix3d::Identity() - N);
+  int e = 0;
+  std::frexp(A.cwiseAbs().maxCoeff(), &e);
+  const Eigen::Matrix3d As = A * std::ldexp(1.0, -e), Cs = curlA * std::ldexp(1.0, -e);
+  const Eigen::Matrix3d N = (Cs.transpose() * As) / As.determinant();
+  return As * (0.5 * N.trace() * Eigen::Matrix3d::Identity() - N);
 }
 
 /// \ingroup PkgCGALExtMetric

@@ -378,7 +378,9 @@ public:
   /// `sum_f w_f |s_i - D(T(j->i)) s_j|^2 / 2` over its interior faces, divided
   /// by its volume (so that it sums, times the volumes, to the energy).
   /// \param i a tetrahedron index
-  double energy_density(std::size_t i) const { return 0.5 * local_smoothness(i) / volume_[i]; }
+  double energy_density(std::size_t i) const {
+    return std::ldexp(0.5 * local_smoothness(i) / volume_[i], weight_exponent_);
+  }
   /// The boundary faces, in tetrahedron order.
   const std::vector<Boundary_face>& boundary_faces() const { return boundary_; }
   /// The alignment error of a boundary face in degrees: the angle between
@@ -391,11 +393,12 @@ public:
   }
   /// The smoothness energy `sum_f w_f |s_j - D(T(i->j)) s_i|^2` of the current frames.
   double smoothness_energy() const {
-    return 0.5 * internal::deterministic_sum(size(), [&](std::size_t b, std::size_t e) {
-             double s = 0;
-             for (std::size_t i = b; i < e; ++i) s += local_smoothness(i);
-             return s;
-           });
+    const double internal_units = 0.5 * internal::deterministic_sum(size(), [&](std::size_t b, std::size_t e) {
+                                    double s = 0;
+                                    for (std::size_t i = b; i < e; ++i) s += local_smoothness(i);
+                                    return s;
+                                  });
+    return std::ldexp(internal_units, weight_exponent_);
   }
 
 private:
@@ -469,6 +472,16 @@ private:
       volume_[i] = std::abs((p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0]))) / 6;
       A_[i] = field_->A_at(c, point(centroid_[i]));
     });
+    // The weights are homogeneous of degree 1 in A: they are computed with A
+    // divided by an even power of two 2^E near its largest entry, exactly,
+    // so that no metric scale (1e-300 I as well as 1e300 I) under- or
+    // overflows them, and the field is the same bits as without; the
+    // energies are reported multiplied back by 2^E.
+    double largest = 0;
+    for (const Eigen::Matrix3d& A : A_) largest = std::max(largest, A.cwiseAbs().maxCoeff());
+    std::frexp(largest, &weight_exponent_);
+    weight_exponent_ += weight_exponent_ & 1; // even: square roots of the weights scale exactly too
+    const double unit = std::ldexp(1.0, -weight_exponent_);
     internal::parallel_for_each_index(n, [&](std::size_t i) {
       const Cell_handle c = cells_[i];
       Links& L = links_[i];
@@ -486,7 +499,7 @@ private:
         Eigen::Vector3d fc, nrm;
         double area;
         facet_geometry(c, f, fc, nrm, area);
-        const Eigen::Matrix3d Af = field_->A_at(c, point(fc));
+        const Eigen::Matrix3d Af = unit * field_->A_at(c, point(fc));
         L.w[f] = metric_area(Af, nrm, area) / (Af * (centroid_[j] - centroid_[i])).norm();
       }
     });
@@ -499,7 +512,8 @@ private:
     boundary_.clear();
     constraints_.clear();
     stats_.interior_faces = stats_.boundary_faces = stats_.hard_one_axis = stats_.hard_two_axes = 0;
-    stats_.total_face_weight = 0;
+    total_weight_ = 0;
+    std::vector<double> scaled_area; // metric areas in the weights' unit, per boundary face
     const Sh_vector s0 = octahedral_reference_sh();
     for (std::size_t i = 0; i < n; ++i) {
       const std::size_t first = boundary_.size();
@@ -507,22 +521,23 @@ private:
         if (links_[i].nb[f] >= 0) {
           if (std::size_t(links_[i].nb[f]) > i) {
             ++stats_.interior_faces;
-            stats_.total_face_weight += links_[i].w[f];
+            total_weight_ += links_[i].w[f];
           }
           continue;
         }
         Eigen::Vector3d fc, nrm;
         double area;
         facet_geometry(cells_[i], f, fc, nrm, area);
-        const Eigen::Matrix3d Af = field_->A_at(cells_[i], point(fc));
+        const Eigen::Matrix3d Af = unit * field_->A_at(cells_[i], point(fc));
         Boundary_face bf;
         bf.tet = i;
         bf.facet = f;
         bf.normal = nrm;
         bf.direction = Af.inverse() * nrm;
         bf.direction.normalize();
-        bf.metric_area = metric_area(Af, nrm, area);
-        links_[i].w[f] = opt_.boundary_weight * bf.metric_area / (Af * (fc - centroid_[i])).norm();
+        scaled_area.push_back(metric_area(Af, nrm, area));
+        bf.metric_area = std::ldexp(scaled_area.back(), 2 * weight_exponent_); // degree 2 in A
+        links_[i].w[f] = opt_.boundary_weight * scaled_area.back() / (Af * (fc - centroid_[i])).norm();
         boundary_.push_back(bf);
       }
       if (boundary_.size() == first) continue;
@@ -541,9 +556,8 @@ private:
       // degrees away from it.
       std::vector<std::size_t> order;
       for (std::size_t k = first; k < boundary_.size(); ++k) order.push_back(k);
-      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-        return boundary_[a].metric_area > boundary_[b].metric_area;
-      });
+      std::stable_sort(order.begin(), order.end(),
+                       [&](std::size_t a, std::size_t b) { return scaled_area[a] > scaled_area[b]; });
       C.d1 = boundary_[order[0]].direction;
       C.axes = 1;
       for (std::size_t k = 1; k < order.size(); ++k) {
@@ -559,6 +573,7 @@ private:
       constraints_.push_back(C);
     }
     stats_.boundary_faces = boundary_.size();
+    stats_.total_face_weight = std::ldexp(total_weight_, weight_exponent_);
     // Block-Jacobi preconditioner: (sum of the face weights) I + B.
     diagonal_.assign(n, 0.0);
     for (std::size_t i = 0; i < n; ++i) {
@@ -901,7 +916,7 @@ private:
     std::vector<Eigen::Vector3d> g(n), g_new(n), p(n);
     double E = energy_and_gradient(s_, &g);
     ++stats_.energy_evaluations;
-    const double floor_energy = 1e-14 * std::max(stats_.total_face_weight, 1e-300);
+    const double floor_energy = 1e-14 * std::max(total_weight_, 1e-300);
     const int m = std::max(1, opt_.lbfgs_memory);
     // History in a ring of m preallocated slots, oldest first in `order`;
     // per pair: rho = 1 / (s.y) and gamma = (s.y) / (y.Dinv.y).
@@ -1034,7 +1049,7 @@ private:
       std::swap(g, g_new);
       const double decrease = E - E_new;
       E = E_new;
-      if (opt_.iteration_progress) opt_.iteration_progress("refinement", it + 1, E);
+      if (opt_.iteration_progress) opt_.iteration_progress("refinement", it + 1, std::ldexp(E, weight_exponent_));
       small_steps = decrease <= opt_.energy_tolerance * E ? small_steps + 1 : 0;
       if (small_steps >= 3) break;
     }
@@ -1081,6 +1096,8 @@ private:
   std::vector<Sh_vector> s_;
   std::vector<Eigen::Quaterniond> q_;
   bool prepared_ = false;
+  int weight_exponent_ = 0; // the face weights are in units of 2^weight_exponent_
+  double total_weight_ = 0; // the sum of the interior face weights, in that unit
 };
 
 } // namespace CGAL_ext

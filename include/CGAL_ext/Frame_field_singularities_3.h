@@ -114,19 +114,34 @@ inline std::map<std::size_t, std::vector<std::size_t>> edges_at_vertices(
   return incident;
 }
 
-// The vertex reached from `v` by following the chain of edges through
-// vertices of exactly two edges, leaving `v` along edge `k`, for at most
-// `steps` edges.
-inline std::size_t follow_chain(const std::vector<std::array<std::size_t, 2>>& edges,
-                                const std::map<std::size_t, std::vector<std::size_t>>& incident, std::size_t v,
-                                std::size_t k, int steps) {
-  for (int s = 0; s < steps; ++s) {
-    v = edges[k][0] == v ? edges[k][1] : edges[k][0];
-    const std::vector<std::size_t>& list = incident.at(v);
-    if (list.size() != 2) break;
-    k = list[0] == k ? list[1] : list[0];
-  }
-  return v;
+// The ends of the stretch of curve around edge k: from each end of k, at
+// most `steps` edges along the chain of edges through vertices of exactly
+// two edges (stopping at nodes). On a closed loop the two sides stop before
+// they meet, so the stretch never wraps around: its ends differ.
+inline std::array<std::size_t, 2> curve_stretch(const std::vector<std::array<std::size_t, 2>>& edges,
+                                                const std::map<std::size_t, std::vector<std::size_t>>& incident,
+                                                std::size_t k, int steps) {
+  std::array<std::size_t, 2> end = edges[k], edge{{k, k}};
+  std::vector<std::size_t> reached{end[0], end[1]};
+  std::array<bool, 2> going{{true, true}};
+  for (int s = 0; s < steps; ++s)
+    for (int side = 0; side < 2; ++side) {
+      if (!going[side]) continue;
+      const std::vector<std::size_t>& list = incident.at(end[side]);
+      if (list.size() != 2) { // a node
+        going[side] = false;
+        continue;
+      }
+      const std::size_t next = list[0] == edge[side] ? list[1] : list[0];
+      const std::size_t w = edges[next][0] == end[side] ? edges[next][1] : edges[next][0];
+      if (std::find(reached.begin(), reached.end(), w) != reached.end()) { // the other side's ground
+        going[side] = false;
+        continue;
+      }
+      reached.push_back(w);
+      end[side] = w, edge[side] = next;
+    }
+  return end;
 }
 
 } // namespace internal
@@ -152,7 +167,7 @@ constexpr int singular_curve_direction_span = 2;
 /// with the edge alone: the chord from the vertex reached by following the
 /// curve `singular_curve_direction_span` edges back to the one reached as
 /// many edges forward (the chain stops at nodes, vertices with other than two
-/// singular edges). The loop around the edge links the curve once, with the
+/// singular edges, and on a closed loop before the two sides meet). The loop around the edge links the curve once, with the
 /// sign of the edge traversed along `d`: about `d`, the holonomy is `P` or
 /// `P^{-1}` by that sign (an exact test; an edge may zigzag backwards or
 /// across `d`). In the metric (`A` at the edge's midpoint in `c_0`):
@@ -249,9 +264,9 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_fie
   for (std::size_t k = 0; k < found.size(); ++k) {
     Found& f = found[k];
     Singular_edge& s = f.edge;
-    const int span = singular_curve_direction_span;
-    const std::size_t back = internal::follow_chain(ends, incident, s.vertices[1], k, span + 1);
-    const std::size_t ahead = internal::follow_chain(ends, incident, s.vertices[0], k, span + 1);
+    const std::array<std::size_t, 2> stretch =
+        internal::curve_stretch(ends, incident, k, singular_curve_direction_span);
+    const std::size_t back = stretch[0], ahead = stretch[1];
     // The curve, traversed from vertices[0] to vertices[1] here, and its
     // direction d over a few edges. The loop about t links the curve with
     // the sign of t . (p1 - p0), exactly +-1 (t is +-(p1 - p0)): about the
@@ -274,7 +289,7 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_fie
     }
     a.normalize();
     const double c = link * a.dot(d_frame); // > 0: P turns positively about d
-    s.turn_deg = trace == -1 ? 180.0 : (c >= 0 ? angle : -angle);
+    s.turn_deg = trace == -1 ? 180.0 : (c > 0 ? angle : -angle);
     s.axis_angle_deg = std::acos(std::min(1.0, std::abs(c))) * 180 / M_PI;
     s.edge_axis_angle_deg = std::acos(std::min(1.0, std::abs(a.dot(t_frame)))) * 180 / M_PI;
     const Eigen::Vector3d axis = f.frame_from_metric.inverse() * a; // A^{-1} R_0 a
@@ -311,7 +326,10 @@ struct Singular_node {
   /// What the node is.
   enum class Kind {
     boundary_end, ///< one singular edge, at a boundary vertex: a curve reaching the surface
-    interior_end, ///< one singular edge, inside the volume: a curve that stops (not meshable)
+    interior_end, ///< one singular edge, inside the volume: a curve that stops. Exact
+                  ///< matchings cannot give it (the holonomy around that edge is the
+                  ///< product of those around the vertex's other edges, all regular),
+                  ///< so it is reported as a consistency check
     junction      ///< three or more singular edges
   };
   /// The 0-based vertex index.
@@ -372,7 +390,8 @@ struct Singularity_graph {
 /// nodes in increasing vertex order and leave each along its edges in
 /// increasing order of the other vertex; loops start at their smallest vertex.
 ///
-/// \tparam Frame_field a `Frame_field_3`
+/// \tparam Frame_field a `Frame_field_3` after `compute()` or `set_rotations()`
+///         (which find its boundary faces)
 /// \param ff the frame field (for the boundary and the positions)
 /// \param edges its singular edges, as `singular_edges()` returns them
 template <class Frame_field>

@@ -231,6 +231,10 @@ public:
   /// Computed on first use and cached.
   /// \param c a cell of the domain
   /// \throws std::invalid_argument if `c` is not a cell of the domain
+  /// \throws Input_error naming the tetrahedron if it is too flat for
+  ///         double precision (its edge matrix is singular once rounded);
+  ///         the same from every member that reads the cell's data, and
+  ///         from `precompute()`
   const Eigen::Matrix3d& curl(Cell_handle c) const { return data(c).curl; }
 
   /// The connection one-form `W` at a point of the cell `c` (MATH.md section 3):
@@ -342,6 +346,11 @@ private:
   };
 
   static std::string vertex_name(std::size_t i) { return "vertex " + std::to_string(i + 1); }
+  static std::string volume_text(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  }
 
 
   std::size_t checked_index(Vertex_handle v) const {
@@ -389,6 +398,12 @@ private:
     Eigen::Matrix3d E;
     for (int v = 1; v < 4; ++v) E.col(v - 1) = internal::to_eigen_vector(c->vertex(v)->point()) - d.p0;
     d.inverse_edges = E.inverse();
+    // Exactly positive tets can be flat in double (a volume that underflows,
+    // or vertices that round onto a plane): no gradient exists there.
+    if (!(std::abs(E.determinant()) > 0) || !d.inverse_edges.allFinite())
+      throw Input_error("", 0, "tetrahedron " + std::to_string(static_cast<std::int64_t>(get(cim_, c)) + 1),
+                        "too flat for double precision: its volume is " + volume_text(std::abs(E.determinant()) / 6) +
+                            " in double");
     const Eigen::Matrix3d& A0 = sqrt_[get(vim_, c->vertex(0))];
     std::array<Eigen::Matrix3d, 3> dA; // dA[k] = d A / d x_k
     for (int k = 0; k < 3; ++k) dA[k].setZero();

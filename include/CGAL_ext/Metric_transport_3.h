@@ -182,10 +182,12 @@ public:
     pieces.reserve(16);
     walk_.fast(a, b, std::back_inserter(pieces), hint);
 
+    // A gap fails the whole segment: find it before integrating anything.
+    for (const Piece& piece : pieces)
+      if (piece.dimension < 0) return gap_failure(res, piece, a, b, hint);
     const Eigen::Vector3d d = pb - pa;
     Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
     for (const Piece& piece : pieces) {
-      if (piece.dimension < 0) return gap_failure(res, piece, a, b, hint);
       const double h = piece.t_out - piece.t_in;
       // a == b gives one piece [0, 1] of zero length; a vertex piece has zero
       // length; a piece shorter than the double resolution of t turns by less

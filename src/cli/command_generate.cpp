@@ -403,22 +403,31 @@ int command_generate(const std::vector<std::string>& args) {
   }
   if (!hex.scaled) hex.rule = "the metric's unit length";
   const double scale = 1 / (hex.h * hex.h);
+  // g / h^2, each tensor checked again: a valid g can overflow once scaled.
+  auto scaled = [&](std::vector<Eigen::Matrix3d> g, const std::string& source) {
+    for (std::size_t i = 0; i < g.size(); ++i) {
+      g[i] *= scale;
+      const std::string problem = check_metric_tensor(g[i]);
+      if (!problem.empty())
+        throw Input_error(source, 0, "vertex " + std::to_string(i + 1),
+                          "the metric scaled to the hex size (g / h^2, h = " + number(hex.h) + "): " + problem);
+    }
+    return g;
+  };
   std::unique_ptr<Field> field;
   std::string metric_name = "identity";
   if (sol_path) {
-    std::vector<Eigen::Matrix3d> g = IO::read_medit_sol(*sol_path, mesh.vertices.size());
-    for (auto& m : g) m *= scale;
-    field = std::make_unique<Field>(tr, g, *sol_path);
+    field = std::make_unique<Field>(tr, scaled(IO::read_medit_sol(*sol_path, mesh.vertices.size()), *sol_path), *sol_path);
     metric_name = *sol_path;
   } else if (formula) {
-    std::vector<Eigen::Matrix3d> g = evaluate_metric(*formula, mesh.vertices, "--metric-expr");
-    for (auto& m : g) m *= scale;
-    field = std::make_unique<Field>(tr, g, "--metric-expr");
+    field = std::make_unique<Field>(tr, scaled(evaluate_metric(*formula, mesh.vertices, "--metric-expr"), "--metric-expr"),
+                                    "--metric-expr");
     metric_name = "expression " + *metric_expr;
   } else {
     const Eigen::Matrix3d g = g_const * scale;
     const std::string problem = check_metric_tensor(g);
-    if (!problem.empty()) throw Input_error("", 0, "the metric scaled to the hex size (g / h^2)", problem);
+    if (!problem.empty())
+      throw Input_error("", 0, "the metric scaled to the hex size (g / h^2, h = " + number(hex.h) + ")", problem);
     field = std::make_unique<Field>(tr, g);
     if (metric_const) metric_name = "constant " + *metric_const;
   }
