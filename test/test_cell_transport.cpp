@@ -325,3 +325,16 @@ TEST_CASE("a tolerance below what double resolves costs a few steps, at the accu
   CHECK(distance(r.rotation, reference.rotation) <= 1e-12);
   CHECK(r.error_estimate <= 1e-13);
 }
+
+TEST_CASE("the number of Magnus steps is bounded, and reaching the bound is reported", "[transport]") {
+  // A generator spinning 1e5 times over the segment cannot meet 1e-10 in 100 steps.
+  auto u = [](double t) { return V3(1e6 * std::cos(1e6 * t), 1e6 * std::sin(1e6 * t), 1); };
+  Transport_options opt;
+  opt.tolerance = 1e-10;
+  opt.max_steps = 100;
+  const CGAL_ext::Transport_result r = CGAL_ext::integrate_transport(u, opt);
+  CHECK_FALSE(r.converged);
+  CHECK(r.evaluations <= 6 * opt.max_steps);
+  CHECK(r.rotation.allFinite());
+  CHECK((r.rotation.transpose() * r.rotation - M3::Identity()).norm() < 1e-12);
+}

@@ -7,8 +7,12 @@
 
 #include "cli_test_support.h"
 
+#include <CGAL_ext/IO/Medit_mesh.h>
+
 #include <cmath>
 #include <cstdlib>
+#include <chrono>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -48,6 +52,16 @@ const std::string pairs_content = "# ax ay az bx by bz\n"
                                   "1.5 1.5 1 0.5 0.5 1\n"     // from the notch: starts outside
                                   "0.5 0.5 0.5 0.5 0.5 0.5\n" // a == b
                                   "0 0 0 2 0 2\n";            // along two boundary edges (face diagonals)
+
+// Gmsh's box with a hole, and a .sol giving 1e-30 I and 1e30 I to its
+// vertices of even and odd index.
+const std::string gmsh_box = data_dir + "/gmsh_box_with_hole.mesh";
+std::string jumping_metric_file() {
+  const std::size_t n = CGAL_ext::IO::read_medit_mesh(gmsh_box).vertices.size();
+  std::string sol = "MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n" + std::to_string(n) + "\n1 3\n";
+  for (std::size_t i = 0; i < n; ++i) sol += i % 2 ? "1e30 0 1e30 0 0 1e30\n" : "1e-30 0 1e-30 0 0 1e-30\n";
+  return file_with("jumping.sol", sol + "End\n");
+}
 
 } // namespace
 
@@ -142,4 +156,43 @@ TEST_CASE("transport: bad input is one error naming the file with exit 1, bad us
   const Run help = run("transport --help");
   CHECK(help.exit_code == 0);
   CHECK(help.out.find("Usage: metric-frames transport MESH --metric SOL --pairs FILE") == 0);
+}
+
+TEST_CASE("transport: a metric that jumps by 1e30 between vertices ends quickly, and its lines say not converged",
+          "[cli][transport][extreme]") {
+  // 1e-30 I and 1e30 I at alternate vertices of the L-shape: inside a cell the
+  // metric changes by orders of magnitude, and no step size resolves it. The
+  // step budget bounds the work (this used to run for minutes); the rotations
+  // are flagged on their lines.
+  const std::string jumping = jumping_metric_file();
+  // Inside the unit box, away from the hole around x = y = 0.5; the second from outside.
+  const std::string pairs = file_with("pairs.txt", "0.05 0.05 0.1 0.95 0.1 0.9\n2 2 2 0.1 0.1 0.1\n");
+  const auto start = std::chrono::steady_clock::now();
+  const Run r = run("transport " + gmsh_box + " --metric " + jumping + " --pairs " + pairs);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(seconds < 60);
+  const auto out = split_lines(r.out);
+  REQUIRE(out.size() == 2);
+  CHECK(out[0].find("\"converged\": false, \"error_estimate\": ") != std::string::npos);
+  CHECK(out[1] == "{\"pair\": 1, \"error\": \"the start point is outside the domain\"}");
+  CHECK(r.err.find("not converged (the metric changes too fast along them") != std::string::npos);
+}
+
+TEST_CASE("generate: a metric that jumps by 1e30 between vertices is an error naming two tetrahedra", "[cli][generate][extreme]") {
+  const std::string jumping = jumping_metric_file();
+  std::string message;
+  for (const char* threads : {"1", "2"}) {
+    const Run r = run("generate " + gmsh_box + " --metric " + jumping + " --threads " + threads + " -o " +
+                      (work / "jumping_out").string() + " --force");
+    INFO(r.err);
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find("tetrahedra ") != std::string::npos);
+    CHECK(r.err.find("does not converge: the metric changes too fast") != std::string::npos);
+    const std::string m = r.err.substr(r.err.find("error:"));
+    if (message.empty()) message = m;
+    CHECK(m == message); // the same tetrahedra whatever the thread count
+  }
+  CHECK(!std::filesystem::exists(work / "jumping_out" / "frames.fra"));
 }

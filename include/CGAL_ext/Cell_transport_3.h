@@ -99,6 +99,12 @@ struct Transport_options {
   /// Magnus: the smallest step, as a fraction of the segment. A step of this
   /// size is accepted whatever its error, and `converged` is then false.
   double min_step = 1.0 / (1 << 22);
+  /// Magnus: the largest number of steps tried (accepted or not). A smooth
+  /// generator needs a handful; only a metric that changes by orders of
+  /// magnitude inside one cell needs more. When they are used up, the rest
+  /// of the segment is one step and `converged` is false, so that the time
+  /// of a transport is bounded (about `12 * max_steps` evaluations).
+  std::size_t max_steps = 10000;
 };
 
 /// \ingroup PkgCGALExtTransport
@@ -235,9 +241,11 @@ Transport_result integrate_transport(Generator&& u, const Transport_options& opt
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
   double t = 0, h = 1;
   const double min_step = std::max(opt.min_step, 1e-300);
+  std::size_t tried = 0;
   while (t < 1) {
+    const bool last_chance = ++tried >= opt.max_steps; // the rest in one step
     // Avoid a sliver step at the end: stretch to the end if close.
-    if (t + 1.05 * h >= 1) h = 1 - t;
+    if (last_chance || t + 1.05 * h >= 1) h = 1 - t;
     const Eigen::Matrix3d coarse = internal::magnus4_step(u, t, h, res);
     const Eigen::Matrix3d first = internal::magnus4_step(u, t, 0.5 * h, res);
     const Eigen::Matrix3d second = internal::magnus4_step(u, t + 0.5 * h, 0.5 * h, res);
@@ -246,7 +254,7 @@ Transport_result integrate_transport(Generator&& u, const Transport_options& opt
     internal::check_finite_generator(estimate, t, t + h);
     const double allowed = std::max(opt.tolerance * h, internal::rounding_floor(rotation_angle(fine)) / 15);
     const bool ok = estimate <= allowed;
-    if (ok || h <= min_step) {
+    if (ok || h <= min_step || last_chance) {
       if (!ok) res.converged = false;
       R = fine * R;
       t = (h == 1 - t) ? 1.0 : t + h;

@@ -18,16 +18,19 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <Eigen/SVD>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <limits>
 #include <string>
@@ -196,7 +199,7 @@ void parallel_for_each_index(std::size_t n, F&& f) {
 /// depend on the number of threads.
 ///
 /// \tparam Metric_field a metric field such as `Metric_field_3<Tr>`: it
-///         provides `triangulation()`, `A_at(c, p)` and `curl(c)`
+///         provides `triangulation()`, `A_at(c, p)`, `curl(c)` and `sqrt_metric(v)`
 /// \tparam CellIndexMap a readable property map from cell handle to a 0-based
 ///         index, negative outside the domain; the domain's indices must be
 ///         exactly `0..n-1` (the tetrahedron order of the mesh file)
@@ -595,10 +598,23 @@ private:
     topt.tolerance = opt_.transport_tolerance;
     topt.scheme = opt_.transport_scheme;
     std::vector<double> max_angle(n, 0.0);
+    // Failures are kept per tetrahedron and the first one in index order is
+    // reported: the same error whatever the number of threads. Indices above
+    // a failure found are skipped; those below are all done, so that first
+    // one is the same.
+    std::vector<std::exception_ptr> failure(n);
+    std::vector<std::int64_t> unconverged(n, -1); // the neighbour across a face whose transport did not converge
+    std::atomic<std::size_t> first_failure(n);
+    auto failed = [&](std::size_t i) {
+      for (std::size_t f = first_failure.load(); i < f && !first_failure.compare_exchange_weak(f, i);) {
+      }
+    };
     // The smaller index of each face computes T(i->j) and writes both sides;
     // no other thread touches those two slots.
     internal::parallel_for_each_index(n, [&](std::size_t i) {
+      if (i > first_failure.load(std::memory_order_relaxed)) return;
       const Cell_handle c = cells_[i];
+      try {
       for (int f = 0; f < 4; ++f) {
         const std::int64_t j = links_[i].nb[f];
         if (j < 0 || std::size_t(j) < i) continue;
@@ -609,6 +625,11 @@ private:
         const Point_3 pf = point(fc);
         const Transport_result a = cell_transport(*field_, c, point(centroid_[i]), pf, topt);
         const Transport_result b = cell_transport(*field_, cj, pf, point(centroid_[j]), topt);
+        if (!a.converged || !b.converged) {
+          unconverged[i] = j;
+          failed(i);
+          return;
+        }
         const Eigen::Matrix3d T = b.rotation * a.rotation; // T(i->j), pieces left-multiplied
         const int fj = cj->index(c);
         if (T == Eigen::Matrix3d::Identity()) continue; // both slots stay identity
@@ -619,7 +640,29 @@ private:
         links_[i].identity[f] = false;
         max_angle[i] = std::max(max_angle[i], rotation_angle(T));
       }
+      } catch (...) {
+        failure[i] = std::current_exception();
+        failed(i);
+      }
     });
+    for (std::size_t i = 0; i < n; ++i) {
+      if (failure[i]) std::rethrow_exception(failure[i]);
+      if (unconverged[i] < 0) continue;
+      const std::size_t j = std::size_t(unconverged[i]);
+      // The largest change of A between two of their vertices: |A_u^{-1} A_v| (spectral norm).
+      double change = 1;
+      for (const Cell_handle a : {cells_[i], cells_[j]})
+        for (const Cell_handle b : {cells_[i], cells_[j]})
+          for (int u = 0; u < 4; ++u)
+            for (int v = 0; v < 4; ++v) {
+              const Eigen::Matrix3d M = field_->sqrt_metric(a->vertex(u)).inverse() * field_->sqrt_metric(b->vertex(v));
+              change = std::max(change, Eigen::JacobiSVD<Eigen::Matrix3d>(M).singularValues()(0));
+            }
+      throw Input_error("", 0, "tetrahedra " + std::to_string(i + 1) + " and " + std::to_string(j + 1),
+                        "the transport across their shared face does not converge: the metric changes too fast "
+                        "there (its square root by a factor of up to " + format(change) +
+                            " between their vertices); refine the mesh there or smooth the metric");
+    }
     stats_.identity_transports = 0;
     stats_.max_transport_angle = 0;
     for (std::size_t i = 0; i < n; ++i) {

@@ -28,7 +28,9 @@ const char* transport_help =
     "  {\"pair\": i, \"error\": \"the segment leaves the domain at t = 0.42 ...\"}\n\n"
     "A rotation field parallel along the segment satisfies R(b) = T(a->b) R(a).\n"
     "R is within about T radians of the exact transport of the piecewise-linear\n"
-    "metric field; a segment with a part outside the mesh gets an error line.\n\n"
+    "metric field, or its line ends with \"converged\": false and its error estimate\n"
+    "(a metric that changes by orders of magnitude inside a cell); a segment\n"
+    "with a part outside the mesh gets an error line.\n\n"
     "Options:\n"
     "  --metric SOL          the metric (.sol, type 3 tensors or type 1 sizes)\n"
     "  --pairs FILE          the pairs (- for standard input)\n"
@@ -95,15 +97,23 @@ int command_transport(const std::vector<std::string>& args) {
         std::snprintf(buf, sizeof buf, "%s%.17g", k ? ", " : "", r.R(k / 3, k % 3));
         line += buf;
       }
-      std::snprintf(buf, sizeof buf, "], \"angle\": %.17g, \"evaluations\": %zu}\n", r.angle, r.evaluations);
+      std::snprintf(buf, sizeof buf, "], \"angle\": %.17g, \"evaluations\": %zu", r.angle, r.evaluations);
       line += buf;
+      if (!r.converged) { // the tolerance is not met: say so on the line itself
+        std::snprintf(buf, sizeof buf, ", \"converged\": false, \"error_estimate\": %.3g", r.error_estimate);
+        line += buf;
+      }
+      line += "}\n";
     }
     std::fputs(line.c_str(), stdout);
   }
   timer.stage("write");
   std::fprintf(stderr, "[summary] %zu pairs: %zu transported (%zu W evaluations), %zu outside the domain%s\n",
                results.size(), results.size() - failed, evaluations, failed,
-               unconverged ? (", " + std::to_string(unconverged) + " not converged (depth cap)").c_str() : "");
+               unconverged ? (", " + std::to_string(unconverged) +
+                              " not converged (the metric changes too fast along them: \"converged\": false)")
+                                 .c_str()
+                           : "");
   timer.summary();
   return 0;
 }
