@@ -51,10 +51,7 @@ std::vector<std::array<double, 9>> read_fra(const std::string& path) {
       throw Input_error(path, e.line(), "frame " + std::to_string(t + 1), e.problem());
     }
   }
-  std::string_view extra;
-  if (tk.next(extra))
-    tk.fail("", "unexpected '" + std::string(extra.substr(0, 40)) + "' after the last of the " + std::to_string(count) +
-                    " frames (the count is too small?)");
+  internal::expect_end_of_records(tk, count, "frames");
   return frames;
 }
 

@@ -95,10 +95,7 @@ Perm_file read_perm(const std::string& path) {
       tk.fail(element, "the face between tetrahedra " + std::to_string(t[0]) + " and " + std::to_string(t[1]) +
                            " is listed twice");
   }
-  std::string_view extra;
-  if (tk.next(extra))
-    tk.fail("", "unexpected '" + std::string(extra.substr(0, 40)) + "' after the last of the " + std::to_string(count) +
-                    " faces (the count is too small?)");
+  internal::expect_end_of_records(tk, count, "faces");
   return out;
 }
 

@@ -1,12 +1,14 @@
 // Copyright (c) 2026 CGAL Metric Frames contributors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
-// Internal to the readers of CubeCover's files (.fra, .perm).
+// Internal to the readers of CubeCover's files (.fra, .perm): their first and
+// last tokens.
 #ifndef CGAL_EXT_SRC_IO_CUBECOVER_HEADER_H
 #define CGAL_EXT_SRC_IO_CUBECOVER_HEADER_H
 
 #include <CGAL_ext/IO/Medit_tokenizer.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -25,6 +27,14 @@ inline void read_cubecover_header(Medit_tokenizer& tk, const std::string& word, 
   const std::int64_t version = tk.read_int(("the " + extension + " version").c_str());
   if (version != 1)
     tk.fail("", extension + " version " + std::to_string(version) + ": only version 1 is supported (as in CubeCover)");
+}
+
+// Checks that the file ends after its `count` records (`records`: "frames").
+inline void expect_end_of_records(Medit_tokenizer& tk, std::size_t count, const std::string& records) {
+  std::string_view extra;
+  if (tk.next(extra))
+    tk.fail("", "unexpected '" + std::string(extra.substr(0, 40)) + "' after the last of the " + std::to_string(count) +
+                    " " + records + " (the count is too small?)");
 }
 
 } // namespace CGAL_ext::IO::internal
