@@ -244,7 +244,7 @@ TEST_CASE("an octahedron: orientation, volume, closed boundary, sharp edges", "[
   for (int r : m.triangle_references) CHECK(r >= 1);
 }
 
-TEST_CASE("same input and options give the same mesh; another seed still a valid mesh", "[tetrahedralize]") {
+TEST_CASE("same input and options give the same mesh, and another seed still a valid mesh", "[tetrahedralize]") {
   const std::string path = write_file("octahedron_det.off", octahedron().off());
   const Medit_mesh a = CGAL_ext::tetrahedralize_surface(path, with_size(0.3));
   const Medit_mesh b = CGAL_ext::tetrahedralize_surface(path, with_size(0.3));
