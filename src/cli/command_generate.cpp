@@ -233,14 +233,23 @@ void write_singularities_vtu(const std::string& path, const IO::Medit_mesh& mesh
                          {vertex_id, node});
 }
 
-// The "singularities" object of report.json. Vertex numbers are 1-based, as in mesh.mesh.
-std::string singularities_json(const std::vector<Singular_edge>& sing, const Singularity_graph& graph) {
+// The singular edges counted by type (every type listed) and the non-meshable ones.
+struct Singularity_counts {
   std::map<std::string, std::size_t> by_type = {{"+1/4", 0}, {"-1/4", 0}, {"1/4 across", 0}, {"1/2", 0}, {"1/3", 0}};
   std::size_t non_meshable = 0;
-  for (const Singular_edge& s : sing) {
-    ++by_type[singularity_type_name(s.type)];
-    non_meshable += !is_meshable(s.type);
+  explicit Singularity_counts(const std::vector<Singular_edge>& sing) {
+    for (const Singular_edge& s : sing) {
+      ++by_type[singularity_type_name(s.type)];
+      non_meshable += !is_meshable(s.type);
+    }
   }
+};
+
+// The "singularities" object of report.json. Vertex numbers are 1-based, as in mesh.mesh.
+std::string singularities_json(const std::vector<Singular_edge>& sing, const Singularity_counts& counts,
+                               const Singularity_graph& graph) {
+  const auto& by_type = counts.by_type;
+  const std::size_t non_meshable = counts.non_meshable;
   std::ostringstream js;
   js << "{\n    \"edges\": " << sing.size() << ",\n    \"edges_by_type\": {";
   bool first = true;
@@ -454,12 +463,8 @@ int command_generate(const std::vector<std::string>& args) {
   const Matchings matchings(ff);
   const std::vector<Singular_edge> sing = singular_edges(ff, matchings);
   const Singularity_graph graph = singularity_graph(ff, sing);
-  std::size_t non_meshable = 0;
-  std::map<std::string, std::size_t> by_type;
-  for (const Singular_edge& s : sing) {
-    non_meshable += !is_meshable(s.type);
-    ++by_type[singularity_type_name(s.type)];
-  }
+  const Singularity_counts counts(sing);
+  const std::size_t non_meshable = counts.non_meshable;
   stage("singularities", lap(),
         std::to_string(sing.size()) + " singular edges in " + std::to_string(graph.curves.size()) + " curves, " +
             std::to_string(graph.nodes.size()) + " nodes; " + std::to_string(non_meshable) + " non-meshable edges");
@@ -485,7 +490,7 @@ int command_generate(const std::vector<std::string>& args) {
      << "  \"interior_faces\": " << st.interior_faces << ",\n"
      << "  \"boundary_faces\": " << st.boundary_faces << ",\n"
      << "  \"singular_edges\": " << sing.size() << ",\n"
-     << "  \"singularities\": " << singularities_json(sing, graph) << ",\n"
+     << "  \"singularities\": " << singularities_json(sing, counts, graph) << ",\n"
      << "  \"smoothness_energy\": " << number(st.smoothness_energy) << ",\n"
      << "  \"smoothness_energy_per_weight\": " << number(st.smoothness_energy / st.total_face_weight) << ",\n"
      << "  \"projected_energy\": " << number(st.projected_energy) << ",\n"
@@ -512,7 +517,8 @@ int command_generate(const std::vector<std::string>& args) {
   stage("write report", lap(), report_path);
 
   std::string types;
-  for (const auto& [name, n] : by_type) types += (types.empty() ? "" : ", ") + name + ": " + std::to_string(n);
+  for (const auto& [name, n] : counts.by_type)
+    if (n) types += (types.empty() ? "" : ", ") + name + ": " + std::to_string(n);
   std::fprintf(stderr,
                "\n  %-32s %zu (%zu vertices)\n  %-32s %s\n  %-32s %s\n  %-32s %.0f\n"
                "  %-32s %.6g (per unit weight %.3g)\n  %-32s mean %.3g, max %.3g\n  %-32s %.3g\n"
