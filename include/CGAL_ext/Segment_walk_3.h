@@ -10,6 +10,7 @@
 
 #include <CGAL_ext/Tet_mesh_triangulation_3.h>
 #include <CGAL_ext/internal/Walk_cell_array_3.h>
+#include <CGAL_ext/internal/Walk_crossing_parameter.h>
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -143,8 +144,12 @@ inline int walk_popcount(unsigned m) { return int(m & 1u) + int((m >> 1) & 1u) +
 /// Every combinatorial decision (which simplex, which side, where the walk
 /// re-enters the domain) is taken with exact predicates (orientations of the
 /// input points and mesh vertices, and exact rational arithmetic for the
-/// rare re-entry search); the reported parameters are computed in double and
-/// forced to be non-decreasing. When the kernel's number type is `double`,
+/// rare re-entry search). Every reported parameter is within 1e-12 of its
+/// exact value: computed in double where an error bound certifies it (below
+/// 2e-13), else in interval arithmetic, else exactly and rounded; a piece of
+/// exact positive length has `t_in < t_out` (except pieces starting within a
+/// few units in the last place of 1, which double cannot separate).
+/// When the kernel's number type is `double`,
 /// orientation tests first go through an inlined semi-static filter (the
 /// expression shape and error bound of CGAL's own static filter of
 /// `Orientation_3`, with a safety factor of 2) and call the traits'
@@ -160,7 +165,7 @@ inline int walk_popcount(unsigned m) { return int(m & 1u) + int((m >> 1) & 1u) +
 /// segment line, and the signs of the three planes through the line and the
 /// new vertex choose the exit facet; whether \f$p\f$ was reached, and the
 /// exit parameter, come from the barycentric weights of the crossing point,
-/// carried from cell to cell. These signs are certified by static error
+/// carried from cell to cell with their error bounds. These signs are certified by static error
 /// bounds computed once per segment; an uncertain one is decided by the
 /// traits' exact predicate. Degenerate configurations (the segment through
 /// a vertex, along an edge, in a facet plane) are detected when a predicate
@@ -267,8 +272,8 @@ public:
   /// Fast mode: only the pieces of positive length (cells, edges and facets
   /// the segment runs along or through, and gaps), in order. These are the
   /// pieces of the full output without its zero-length pieces, so
-  /// consecutive pieces are adjacent in t. "Positive length" is exact: a
-  /// piece of tiny positive length may still have `t_in == t_out` in double.
+  /// consecutive pieces are adjacent in t. "Positive length" is exact, and
+  /// such a piece has `t_in < t_out` (see the class description).
   /// Consecutive gaps (separated by a point where the segment only touches
   /// the domain) are not merged. If `q == p` the one piece of the full
   /// output (of zero length) is reported.
@@ -404,12 +409,14 @@ private:
   struct Ctx {
     Point q, p;
     double qx, qy, qz, dx, dy, dz, dd;
+    double d1, dinf; // |D|_1 and |D|_inf, for the error bounds of crossing parameters
     double px, py, pz;
     // Static filter bounds of the cell-array walk (valid iff `fast`): any
     // det[D, a - q, b - q] of mesh vertices computed in double is within E
     // of the exact value, any (v - p).D within Er.
     bool fast = false;
     double E = 0, Er = 0;
+    double emu = 0; // pi(a, b) is within emu |w_a|_1 |b - a|_1 of its exact value
     std::size_t steps = 0;
     std::size_t max_steps;
     std::size_t query = std::size_t(-1); // index in a batch, for messages
@@ -427,9 +434,11 @@ private:
       qx = CGAL::to_double(q.x()); qy = CGAL::to_double(q.y()); qz = CGAL::to_double(q.z());
       dx = CGAL::to_double(p.x()) - qx; dy = CGAL::to_double(p.y()) - qy; dz = CGAL::to_double(p.z()) - qz;
       dd = dx * dx + dy * dy + dz * dz;
+      d1 = std::fabs(dx) + std::fabs(dy) + std::fabs(dz);
+      dinf = std::max(std::fabs(dx), std::max(std::fabs(dy), std::fabs(dz)));
       px = CGAL::to_double(p.x()); py = CGAL::to_double(p.y()); pz = CGAL::to_double(p.z());
       fast = false;
-      E = Er = 0;
+      E = Er = emu = 0;
       steps = 0;
       query = std::size_t(-1);
       candidates_ready = false;
@@ -701,67 +710,40 @@ private:
     return orient_(a, b, c, d);
   }
 
-  // --------------------------------------------------------- t in double
-  double t_vertex(const Ctx& x, const Point& v) const {
-    const double wx = CGAL::to_double(v.x()) - x.qx, wy = CGAL::to_double(v.y()) - x.qy, wz = CGAL::to_double(v.z()) - x.qz;
-    return (wx * x.dx + wy * x.dy + wz * x.dz) / x.dd;
+  // ------------------------------------------------- crossing parameters
+  // Every parameter the walk reports is within internal::walk_crossing_tolerance
+  // of its exact value: computed in double where an error bound certifies it,
+  // else in interval arithmetic, else exactly (rounded to double). A value
+  // within twice the tolerance of 1 is always computed exactly, so that the
+  // pieces that end near p keep their order and positive lengths.
+  static bool certified_before_end(bool ok, double t) { return ok && t <= 1 - 2 * internal::walk_crossing_tolerance; }
+  static void coords(const Point& a, double* r) {
+    r[0] = CGAL::to_double(a.x());
+    r[1] = CGAL::to_double(a.y());
+    r[2] = CGAL::to_double(a.z());
   }
-  double t_edge(const Ctx& x, const Point& a, const Point& b) const {
-    const double ax = CGAL::to_double(a.x()), ay = CGAL::to_double(a.y()), az = CGAL::to_double(a.z());
-    const double ex = CGAL::to_double(b.x()) - ax, ey = CGAL::to_double(b.y()) - ay, ez = CGAL::to_double(b.z()) - az;
-    const double wx = ax - x.qx, wy = ay - x.qy, wz = az - x.qz;
-    // The lines meet: q + t D = a + s e, so t (D x e) = (a - q) x e. Cross
-    // products keep the precision when the lines are nearly parallel (the
-    // normal-equation form loses it quadratically).
-    const double cx = x.dy * ez - x.dz * ey, cy = x.dz * ex - x.dx * ez, cz = x.dx * ey - x.dy * ex;
-    const double wx_ = wy * ez - wz * ey, wy_ = wz * ex - wx * ez, wz_ = wx * ey - wy * ex;
-    return (wx_ * cx + wy_ * cy + wz_ * cz) / (cx * cx + cy * cy + cz * cz);
-  }
-  // Where the line crosses the plane (a, b, c): X = sum lambda_v v with
-  // lambda_a proportional to det[D, b - q, c - q] (and cyclically), so
-  // t = sum lambda_v (v - q).D / |D|^2. Unlike n.(a - q) / n.D, this keeps
-  // its precision for segments much shorter than the facet: the weight of a
-  // far vertex is then tiny instead of its coordinates swamping q's.
-  double t_plane(const Ctx& x, const Point& a, const Point& b, const Point& c) const {
-    double w[3][3];
-    diff(a, x.qx, x.qy, x.qz, w[0]);
-    diff(b, x.qx, x.qy, x.qz, w[1]);
-    diff(c, x.qx, x.qy, x.qz, w[2]);
-    double lam[3], tau[3];
-    for (int i = 0; i < 3; ++i) {
-      const double* u = w[(i + 1) % 3];
-      const double* v = w[(i + 2) % 3];
-      lam[i] = x.dx * (u[1] * v[2] - u[2] * v[1]) + x.dy * (u[2] * v[0] - u[0] * v[2]) + x.dz * (u[0] * v[1] - u[1] * v[0]);
-      tau[i] = (w[i][0] * x.dx + w[i][1] * x.dy + w[i][2] * x.dz) / x.dd;
-    }
-    const double sum = lam[0] + lam[1] + lam[2];
-    if (std::isnormal(sum) && std::isfinite(tau[0] + tau[1] + tau[2]))
-      return (lam[0] * tau[0] + lam[1] * tau[1] + lam[2] * tau[2]) / sum;
-    return t_plane_normal(x, a, b, c);
-  }
-  double t_plane_normal(const Ctx& x, const Point& a, const Point& b, const Point& c) const {
-    const double ax = CGAL::to_double(a.x()), ay = CGAL::to_double(a.y()), az = CGAL::to_double(a.z());
-    const double ux = CGAL::to_double(b.x()) - ax, uy = CGAL::to_double(b.y()) - ay, uz = CGAL::to_double(b.z()) - az;
-    const double vx = CGAL::to_double(c.x()) - ax, vy = CGAL::to_double(c.y()) - ay, vz = CGAL::to_double(c.z()) - az;
-    const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
-    return (nx * (ax - x.qx) + ny * (ay - x.qy) + nz * (az - x.qz)) / (nx * x.dx + ny * x.dy + nz * x.dz);
-  }
-  // Parameter of the point of the segment in face s, clamped to [lo, 1].
-  double t_of(const Ctx& x, const Simplex& s, double lo) const {
-    int id[3], k = 0;
+  // Parameter of the point where the segment meets face s (crossing it, or
+  // through a vertex), with no bound on its position yet.
+  double crossing_t(const Ctx& x, const Simplex& s) const {
+    double v[3][3];
+    int k = 0;
     for (int i = 0; i < 4 && k < 3; ++i)
-      if (s.mask & (1u << i)) id[k++] = i;
-    double t;
-    switch (k) {
-    case 1: t = t_vertex(x, pt(s.c, id[0])); break;
-    case 2: t = t_edge(x, pt(s.c, id[0]), pt(s.c, id[1])); break;
-    default: t = t_plane(x, pt(s.c, id[0]), pt(s.c, id[1]), pt(s.c, id[2])); break;
-    }
-    return clamp_t(t, lo);
+      if (s.mask & (1u << i)) coords(pt(s.c, i), v[k++]);
+    const double q[3] = {x.qx, x.qy, x.qz}, p[3] = {x.px, x.py, x.pz};
+    double t = 0;
+    if (certified_before_end(internal::walk_interval_parameter(q, p, k, v, t), t)) return t;
+    return CGAL::to_double(exact_t(x, s));
   }
-  static double clamp_t(double t, double lo) {
-    if (!(t >= lo)) return lo; // also NaN
-    return t > 1.0 ? 1.0 : t;
+  // The same, for a facet s = (a, b, c), trying the normal form in double first.
+  double facet_crossing_t(const Ctx& x, const Simplex& s, const double* a, const double* b, const double* c) const {
+    const double q[3] = {x.qx, x.qy, x.qz}, d[3] = {x.dx, x.dy, x.dz};
+    double t = 0;
+    if (certified_before_end(internal::walk_plane_parameter(q, d, a, b, c, t), t)) return t;
+    return crossing_t(x, s);
+  }
+  // Exit parameter of a piece that started at lo, where the segment meets face s.
+  double t_of(const Ctx& x, const Simplex& s, double lo) const {
+    return internal::walk_exit_parameter(crossing_t(x, s), lo);
   }
 
   // ------------------------------------------------------------------ walk
@@ -909,8 +891,12 @@ private:
         if (op == 0) sink(Simplex{c, 15u & ~(1u << k)}, 1.0, 1.0, true);
         return Next();
       }
-      const double t_out = clamp_t(t_plane(x, a, b, e), t_in);
       const Simplex fct{c, 15u & ~(1u << k)};
+      double xa[3], xb[3], xe[3];
+      coords(a, xa);
+      coords(b, xb);
+      coords(e, xe);
+      const double t_out = internal::walk_exit_parameter(facet_crossing_t(x, fct, xa, xb, xe), t_in);
       sink(Simplex{c, 15u}, t_in, t_out, false);
       const Cell_handle n = c->neighbor(k);
       if (!is_domain_cell(n)) return Next{false, fct, t_out, true};
@@ -925,9 +911,13 @@ private:
   // The generic step again, on the cell array, with each vertex turned once
   // into Pluecker-style data relative to the segment line L = q + t D:
   //   w = v - q,  u = D x w,  rho = (v - p) . D.
-  // Then pi(a, b) = u_a . w_b = det[D, a - q, b - q] has the sign of
+  // Then pi(a, b) = u_a . (b - a) = det[D, a - q, b - q] has the sign of
   // orientation(q, p, a, b), so the exit facet costs three dot products
-  // (and one cross product per new vertex, off the critical path). For a facet (g0, g1, g2) with the cell
+  // (and one cross product per new vertex, off the critical path). The
+  // edge b - a is taken from the coordinates, not as w_b - w_a: far from q,
+  // u_a . w_b loses about (|w| / edge length)^2 of relative precision to
+  // cancellation, u_a . (b - a) only |w| / edge length, which keeps the
+  // parameters below accurate to a few ulps. For a facet (g0, g1, g2) with the cell
   // on its positive side crossed outwards, mu_i = -pi(g_{i+1}, g_{i+2}) are
   // the barycentric weights of the crossing point X (S = sum mu_i > 0), and
   //   G = sum mu_i rho_i = |D|^2 det[g1 - g0, g2 - g0, p - g0]
@@ -936,6 +926,8 @@ private:
   // certified by a static error bound for the whole segment (E, Er, derived
   // like CGAL's static filters from bounds on the coordinate differences,
   // with a safety factor of about 2), else the exact predicate decides.
+  // Each weight also carries a bound on its own error, for the exit
+  // parameter (see array_exit_t).
   // The weights need no new products: entering a cell through facet
   // (f0, f1, f2) with weights mu_f, the new vertex d and the signs
   // v_i = pi(d, f_i) choose the exit facet, say (d, f_a, f_b), whose weights
@@ -943,8 +935,11 @@ private:
   // left behind (each the |pi| of the edge opposite the vertex). Each value
   // is still within E of its exact counterpart.
   struct Vertex_data {
+    double x[3]; // coordinates
     double w[3], u[3], rho;
+    double n1; // |w|_1
     double mu; // weight of the vertex in the current facet crossing
+    double el; // |b - a|_1 for the edge (a, b) whose pi gave mu
   };
   struct Array_state {
     Vertex_data pool[4];
@@ -975,29 +970,42 @@ private:
     // parameters do not underflow.
     if (!(x.dd >= 1e-100)) return false;
     // det of three rows of rounded differences: 6 terms of at most m0 m1 m2,
-    // about 8 roundings each: < 5.4e-15 m0 m1 m2. A dot of a rounded
-    // difference with D: < 5.1 u sum mp_i |d_i|.
-    x.E = 1e-14 * m[0] * m[1] * m[2];
+    // about 8 roundings each: < 5.4e-15 m0 m1 m2. pi(a, b): at most 8
+    // roundings per term, sum_i (|d_j| |w_k| + |d_k| |w_j|) |e_i| with
+    // |e_i| <= 2 m_i: < 8.1 u 12 m0 m1 m2 < 1.08e-14 m0 m1 m2. A dot of a
+    // rounded difference with D: < 5.1 u sum mp_i |d_i|.
+    x.E = 2e-14 * m[0] * m[1] * m[2];
+    x.emu = 8.1 * 0x1p-53 * x.dinf;
     x.Er = 1e-15 * (mp[0] * std::fabs(d[0]) + mp[1] * std::fabs(d[1]) + mp[2] * std::fabs(d[2]));
     x.fast = true;
     return true;
   }
   void load_vertex(const Ctx& x, std::int32_t k, Vertex_data& v) const { load_vertex(x, cells_->point(k), v); }
   static void load_vertex(const Ctx& x, const double* a, Vertex_data& v) {
+    v.x[0] = a[0];
+    v.x[1] = a[1];
+    v.x[2] = a[2];
     v.w[0] = a[0] - x.qx;
     v.w[1] = a[1] - x.qy;
     v.w[2] = a[2] - x.qz;
     finish_vertex(x, a, v);
   }
-  // u and rho from w.
+  // u, rho and n1 from w.
   static void finish_vertex(const Ctx& x, const double* a, Vertex_data& v) {
+    v.n1 = std::fabs(v.w[0]) + std::fabs(v.w[1]) + std::fabs(v.w[2]);
     v.u[0] = x.dy * v.w[2] - x.dz * v.w[1];
     v.u[1] = x.dz * v.w[0] - x.dx * v.w[2];
     v.u[2] = x.dx * v.w[1] - x.dy * v.w[0];
     v.rho = (a[0] - x.px) * x.dx + (a[1] - x.py) * x.dy + (a[2] - x.pz) * x.dz;
   }
-  // det[D, a - q, b - q] in double.
-  static double pi(const Vertex_data& a, const Vertex_data& b) { return a.u[0] * b.w[0] + a.u[1] * b.w[1] + a.u[2] * b.w[2]; }
+  // det[D, a - q, b - q] in double, as u_a . (b - a); within
+  // x.emu |a - q|_1 |b - a|_1 of its exact value.
+  static double pi(const Vertex_data& a, const Vertex_data& b) {
+    return a.u[0] * (b.x[0] - a.x[0]) + a.u[1] * (b.x[1] - a.x[1]) + a.u[2] * (b.x[2] - a.x[2]);
+  }
+  static double edge_l1(const Vertex_data& a, const Vertex_data& b) {
+    return std::fabs(b.x[0] - a.x[0]) + std::fabs(b.x[1] - a.x[1]) + std::fabs(b.x[2] - a.x[2]);
+  }
   const Point& array_point(std::int32_t k) const { return cells_->vertex_handle(k)->point(); }
   // Sign of orientation(q, p, a, b), given its value v in double.
   CGAL::Orientation side(const Ctx& x, double v, std::int32_t a, std::int32_t b) const {
@@ -1053,6 +1061,9 @@ private:
         st.pool[g[0]].mu = m0;
         st.pool[g[1]].mu = m1;
         st.pool[g[2]].mu = m2;
+        st.pool[g[0]].el = edge_l1(P[g[1]], P[g[2]]);
+        st.pool[g[1]].el = edge_l1(P[g[2]], P[g[0]]);
+        st.pool[g[2]].el = edge_l1(P[g[0]], P[g[1]]);
       }
     }
     return k >= 0;
@@ -1073,6 +1084,9 @@ private:
     P[f[0]].mu = std::fabs(pi(P[f[1]], P[f[2]]));
     P[f[1]].mu = std::fabs(pi(P[f[2]], P[f[0]]));
     P[f[2]].mu = std::fabs(pi(P[f[0]], P[f[1]]));
+    P[f[0]].el = edge_l1(P[f[1]], P[f[2]]);
+    P[f[1]].el = edge_l1(P[f[2]], P[f[0]]);
+    P[f[2]].el = edge_l1(P[f[0]], P[f[1]]);
     return array_loop(x, st, ci, j, false, t_in, sink);
   }
 
@@ -1109,8 +1123,9 @@ private:
     x.tick();
     int k = j;
     // Over the exit facet: G = sum mu rho, and for its error bound and the
-    // parameter, sum mu, sum |rho| and sum mu |rho|.
-    double G, sum_mu, sum_rho, sum_mu_rho;
+    // parameter, sum mu, sum |rho|, sum mu |rho|, the range of rho, the
+    // largest |w|_1 and the sum of the edges' |b - a|_1.
+    double G, sum_mu, sum_rho, sum_mu_rho, rho_range, max_n1, sum_el;
     if (!cur.have_exit) {
       const std::array<int, 3>& f = internal::walk_inner_facet(j);
       Vertex_data& d = st.at(j);
@@ -1118,12 +1133,16 @@ private:
       const Vertex_data& B = st.at(f[1]);
       const Vertex_data& C = st.at(f[2]);
       const double* xyz = cells_->point(r->v[j]);
+      d.x[0] = xyz[0];
+      d.x[1] = xyz[1];
+      d.x[2] = xyz[2];
       d.w[0] = xyz[0] - x.qx;
       d.w[1] = xyz[1] - x.qy;
       d.w[2] = xyz[2] - x.qz;
       // v_i = pi(d, f_i) = -pi(f_i, d): the u of the entry vertices are
       // known, so the cross product of d is off the critical path.
       const double v[3] = {-pi(A, d), -pi(B, d), -pi(C, d)};
+      const double el_new[3] = {edge_l1(A, d), edge_l1(B, d), edge_l1(C, d)};
       finish_vertex(x, xyz, d);
       // The segment enters through facet (f0, f1, f2) from its negative
       // side; the plane (q, p, d) separates its vertices. With the three
@@ -1172,9 +1191,17 @@ private:
       sum_mu = md + kept_mu[e];
       sum_rho = std::fabs(d.rho) + kept_rho[e];
       sum_mu_rho = md * std::fabs(d.rho) + kept_mu_rho[e];
+      rho_range = std::max(d.rho, std::max(rh[ia], rh[ib])) - std::min(d.rho, std::min(rh[ia], rh[ib]));
+      const double n1_in[3] = {A.n1, B.n1, C.n1}, el_in[3] = {A.el, B.el, C.el};
+      max_n1 = std::max(d.n1, std::max(n1_in[ia], n1_in[ib]));
+      sum_el = el_in[e] + el_new[ia] + el_new[ib];
       d.mu = md;
+      d.el = el_in[e];
       st.pool[pos[ia]].mu = av[ib];
       st.pool[pos[ib]].mu = av[ia];
+      st.pool[pos[ia]].el = el_new[ib];
+      st.pool[pos[ib]].el = el_new[ia];
+
     } else {
       const std::array<int, 3>& g = internal::walk_inner_facet(k);
       const Vertex_data &a = st.at(g[0]), &b = st.at(g[1]), &c = st.at(g[2]);
@@ -1182,6 +1209,9 @@ private:
       sum_mu = a.mu + b.mu + c.mu;
       sum_rho = std::fabs(a.rho) + std::fabs(b.rho) + std::fabs(c.rho);
       sum_mu_rho = a.mu * std::fabs(a.rho) + b.mu * std::fabs(b.rho) + c.mu * std::fabs(c.rho);
+      rho_range = std::max(a.rho, std::max(b.rho, c.rho)) - std::min(a.rho, std::min(b.rho, c.rho));
+      max_n1 = std::max(a.n1, std::max(b.n1, c.n1));
+      sum_el = a.el + b.el + c.el;
     }
     // Exit facet (g0, g1, g2), the cell on its positive side.
     const std::array<int, 3>& g = internal::walk_inner_facet(k);
@@ -1195,10 +1225,9 @@ private:
       nx = Next();
       return false;
     }
-    // (A denominator that underflows on a tiny cell: the plane formula.)
-    const double den = sum_mu * x.dd;
-    const double t_out = std::isnormal(den) ? clamp_t(1.0 + G / den, t_in)
-                                            : t_of(x, Simplex{cells_->cell_handles[ci], 15u & ~(1u << k)}, t_in);
+    double t_out = 1.0 + G / (sum_mu * x.dd);
+    if (!array_exit_certified(x, t_out, sum_mu, sum_mu_rho, rho_range, max_n1, sum_el)) t_out = array_exit_t(x, ci, k);
+    t_out = internal::walk_exit_parameter(t_out, t_in);
     sink(ci, 15u, t_in, t_out, false);
     const std::uint32_t link = r->n[k];
     if (link == Cell_array::outside) {
@@ -1233,6 +1262,48 @@ private:
     cur.have_exit = false;
     cur.t_in = t_out;
     return true;
+  }
+
+  // Whether t = 1 + G / (S |D|^2), the exit parameter from the weights, is
+  // certified within the tolerance. With r_i = rho_i / |D|^2,
+  // t - 1 = sum lambda_i r_i, lambda_i = mu_i / S. Weights off by delta_i
+  // (sum |delta_i| <= Delta) give lambda~ with sum |lambda~_i - lambda_i| <=
+  // 2 Delta / S~ and sum (lambda~ - lambda) = 0, so an error of at most
+  // 2 Delta / S~ (max r - min r); each rho is off by at most
+  // 5.1 u |v - p|_1 |D|_inf <= 5.1 u (|w|_1 + |D|_1) |D|_inf; G's own rounding
+  // is below 3.1 u sum mu |rho|, and S, |D|^2, the division and the sum with
+  // 1 add below 10 u. Multiplied by S |D|^2 (with Delta <= S / 100, so that
+  // the range of the rounded rho serves):
+  //   2.02 Delta range + 5.5 u (max |w|_1 + |D|_1) |D|_inf S + 3.1 u sum mu|rho| + 10 u S |D|^2
+  // against 1.9e-13 S |D|^2. Each weight pi(a, b) is within emu |w_a|_1 |b - a|_1
+  // of its exact value, so Delta <= emu max |w|_1 sum |b - a|_1 over the
+  // facet (the sums of absolute values within (1 + 2 u)).
+  static bool array_exit_certified(const Ctx& x, double t, double sum_mu, double sum_mu_rho, double rho_range,
+                                   double max_n1, double sum_el) {
+    constexpr double u = 0x1p-53;
+    const double den = sum_mu * x.dd;
+    const double Delta = x.emu * (1 + 5 * u) * max_n1 * sum_el;
+    return certified_before_end(std::isnormal(den) && Delta <= 0.01 * sum_mu &&
+                                    2.02 * Delta * rho_range + 5.5 * u * (max_n1 + x.d1) * x.dinf * sum_mu +
+                                            3.1 * u * sum_mu_rho + 10 * u * den <=
+                                        1.9e-13 * den,
+                                t);
+  }
+  // Otherwise (a segment nearly in the facet's plane, or much shorter than
+  // the cell): the normal form, then interval and exact arithmetic. Out of
+  // line, since rarely needed.
+#if defined(__GNUC__)
+  __attribute__((noinline))
+#endif
+  double array_exit_t(const Ctx& x, std::uint32_t ci, int k) const {
+    const std::array<int, 3>& g = internal::walk_inner_facet(k);
+    const typename Cell_array::Record& r = cells_->records[ci];
+    const double q[3] = {x.qx, x.qy, x.qz}, d[3] = {x.dx, x.dy, x.dz};
+    double t2 = 0;
+    if (certified_before_end(internal::walk_plane_parameter(q, d, cells_->point(r.v[g[0]]), cells_->point(r.v[g[1]]),
+                                                            cells_->point(r.v[g[2]]), t2), t2))
+      return t2;
+    return crossing_t(x, Simplex{cells_->cell_handles[ci], 15u & ~(1u << k)});
   }
 
   // Exact general traversal of the open cell c, entered at parameter t_in.
@@ -1556,7 +1627,7 @@ private:
       sink(ns, 1.0, 1.0, true);
       return Next();
     }
-    const double td = clamp_t(CGAL::to_double(ty), t);
+    const double td = internal::walk_exit_parameter(CGAL::to_double(ty), t);
     sink(Simplex(), t, td, false);
     return Next{false, ns, td, false};
   }

@@ -12,6 +12,8 @@
 // centroids, cell centroids) and the points built from them are exact in
 // double: grids are scaled by 6, and jitter is a multiple of 3/16.
 
+#include <CGAL_ext/IO/Medit_mesh.h>
+
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
@@ -404,6 +406,85 @@ inline std::vector<Test_segment> degenerate_segments(const Test_mesh& m, std::si
     }
     }
     out.push_back(s);
+  }
+  return out;
+}
+
+/// A mesh of the test data directory (a Medit file written by Gmsh or
+/// TetGen), its tetrahedra oriented positively.
+inline Test_mesh medit_test_mesh(const std::string& file) {
+  const IO::Medit_mesh mm = IO::read_medit_mesh(std::string(CGAL_EXT_TEST_DATA_DIR) + "/" + file);
+  Test_mesh m{file, mm.vertices, mm.tetrahedra};
+  internal::orient_positively(m);
+  return m;
+}
+
+/// `count` segments that are degenerate only up to rounding: end points
+/// computed in double on an edge's line or in a facet's plane, with
+/// arbitrary (non-dyadic) coefficients, so that the segment passes within
+/// rounding distance of that edge or facet and of every facet around it,
+/// without being exactly on it. Kinds: along an edge line extended beyond
+/// both ends ("edge_line_rounded"), from inside the edge out
+/// ("edge_line_rounded_half"), in a facet plane extended beyond the facet
+/// ("facet_plane_rounded"), through a point of a facet plane from outside the
+/// facet ("facet_plane_through"), and nearly parallel to an edge at a tiny
+/// offset ("edge_offset").
+inline std::vector<Test_segment> rounded_degenerate_segments(const Test_mesh& m, std::size_t count, std::uint64_t seed) {
+  using P3 = std::array<double, 3>;
+  std::mt19937_64 rng(seed);
+  const auto edges = mesh_edges(m);
+  std::vector<std::array<std::size_t, 3>> facets;
+  for (const auto& f : mesh_facets(m)) facets.push_back(f.first);
+  auto pick = [&](std::size_t n) { return static_cast<std::size_t>(internal::uniform_int(rng, 0, static_cast<long>(n) - 1)); };
+  auto on_line = [](const P3& a, const P3& b, double s) { // a + s (b - a), rounded
+    return P3{a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]), a[2] + s * (b[2] - a[2])};
+  };
+  auto in_plane = [](const P3& a, const P3& b, const P3& c, double u, double v) { // a + u (b - a) + v (c - a), rounded
+    P3 r;
+    for (int i = 0; i < 3; ++i) r[i] = a[i] + u * (b[i] - a[i]) + v * (c[i] - a[i]);
+    return r;
+  };
+  auto U = [&](double lo, double hi) { return internal::uniform_real(rng, lo, hi); };
+  std::vector<Test_segment> out;
+  while (out.size() < count) {
+    switch (internal::uniform_int(rng, 0, 4)) {
+    case 0: {
+      const auto& e = edges[pick(edges.size())];
+      const P3 &a = m.points[e[0]], &b = m.points[e[1]];
+      out.push_back({on_line(a, b, U(-3, -0.01)), on_line(a, b, U(1.01, 4)), "edge_line_rounded"});
+      break;
+    }
+    case 1: {
+      const auto& e = edges[pick(edges.size())];
+      const P3 &a = m.points[e[0]], &b = m.points[e[1]];
+      out.push_back({on_line(a, b, U(0.01, 0.99)), on_line(a, b, U(-3, 4)), "edge_line_rounded_half"});
+      break;
+    }
+    case 2: {
+      const auto& f = facets[pick(facets.size())];
+      const P3 &a = m.points[f[0]], &b = m.points[f[1]], &c = m.points[f[2]];
+      out.push_back({in_plane(a, b, c, U(-2, 2), U(-2, 2)), in_plane(a, b, c, U(-2, 2), U(-2, 2)), "facet_plane_rounded"});
+      break;
+    }
+    case 3: {
+      const auto& f = facets[pick(facets.size())];
+      const P3 &a = m.points[f[0]], &b = m.points[f[1]], &c = m.points[f[2]];
+      const double u = U(0.05, 0.9), v = U(0.05, 0.95 - u), s = U(1.5, 3);
+      // from outside the facet, through an interior point of it, and beyond
+      out.push_back({in_plane(a, b, c, -u, -v), in_plane(a, b, c, s * u, s * v), "facet_plane_through"});
+      break;
+    }
+    default: {
+      const auto& e = edges[pick(edges.size())];
+      const P3 &a = m.points[e[0]], &b = m.points[e[1]];
+      P3 q = on_line(a, b, U(-2, -0.1)), p = on_line(a, b, U(1.1, 3));
+      // a shift of a few units in the last place, in one coordinate
+      const int i = static_cast<int>(internal::uniform_int(rng, 0, 2));
+      q[i] = std::nextafter(q[i], q[i] + 1);
+      p[i] = std::nextafter(p[i], p[i] - 1);
+      out.push_back({q, p, "edge_offset"});
+    }
+    }
   }
   return out;
 }
