@@ -78,10 +78,32 @@ TEST_CASE("a Kuhn-subdivided cube builds into a valid CGAL triangulation", "[bui
   }
   const auto s = compute_tet_mesh_statistics(tr, Is_tet_mesh_domain_cell());
   CHECK(s.components == 1);
-  CHECK(s.volume == Approx(8.0).epsilon(1e-14));
+  CHECK(static_cast<double>(s.volume) == Approx(8.0).epsilon(1e-14));
   CHECK(s.boundary_facets == 48);
   CHECK(s.min_dihedral_angle == Approx(45.0));
   CHECK(s.max_dihedral_angle == Approx(90.0));
+}
+
+// info's figures at every scale double holds: a volume of 8e900 or 8e-930
+// (long double), angles from normalised products, never inf, NaN or 0.
+TEST_CASE("mesh statistics are right at every coordinate scale, up to 1e300 and down to subnormal", "[build]") {
+  const IO::Medit_mesh m0 = IO::read_medit_mesh(data_dir + "/cube_kuhn_2.mesh");
+  double mean0 = 0;
+  for (int e : {0, 995, -995, -1060}) {
+    INFO("coordinates scaled by 2^" << e);
+    IO::Medit_mesh m = m0;
+    for (auto& p : m.vertices)
+      for (double& x : p) x = std::ldexp(x, e); // exact: the cube's coordinates are 0, 1, 2
+    Tr tr;
+    build_triangulation_from_tets(m.vertices, m.tetrahedra, {}, tr);
+    const auto s = compute_tet_mesh_statistics(tr, Is_tet_mesh_domain_cell());
+    if (e == 0) mean0 = static_cast<double>(s.mean_edge_length);
+    const long double volume = std::ldexp(8.0L, 3 * e);
+    CHECK(std::abs(s.volume / volume - 1) < 1e-15L);
+    CHECK(std::abs(s.mean_edge_length / std::ldexp(static_cast<long double>(mean0), e) - 1) < 1e-15L);
+    CHECK(s.min_dihedral_angle == Approx(45.0).epsilon(1e-12));
+    CHECK(s.max_dihedral_angle == Approx(90.0).epsilon(1e-12));
+  }
 }
 
 TEST_CASE("negatively oriented tetrahedra are re-oriented and reported", "[build]") {
@@ -101,7 +123,7 @@ TEST_CASE("a non-convex L-shape and Gmsh's box with a hole build", "[build]") {
   auto s = compute_tet_mesh_statistics(tr, Is_tet_mesh_domain_cell());
   CHECK(s.cells == 36);
   CHECK(s.components == 1);
-  CHECK(s.volume == Approx(6.0));
+  CHECK(static_cast<double>(s.volume) == Approx(6.0));
 
   const auto r = IO::read_tet_mesh(data_dir + "/gmsh_box_with_hole.mesh", tr);
   check_adjacency(tr);
@@ -120,7 +142,7 @@ TEST_CASE("two cubes touching along an edge: infinite cells are paired across th
   check_adjacency(tr);
   const auto s = compute_tet_mesh_statistics(tr, Is_tet_mesh_domain_cell());
   CHECK(s.components == 2);
-  CHECK(s.volume == Approx(2.0));
+  CHECK(static_cast<double>(s.volume) == Approx(2.0));
   // Around the shared edge: 2 tets of each cube, separated by 2 outside sectors
   // of 2 infinite cells each. A wrong pairing closes a cycle of 4 on one cube.
   Tr::Vertex_handle a, b;

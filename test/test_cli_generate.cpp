@@ -369,3 +369,53 @@ TEST_CASE("generate meshes a built-in shape with Mesh_3", "[cli][generate]") {
       CHECK(dot > std::cos(M_PI / 4) / (0.35 * 0.35)); // gradients of length 1 / 0.35
     }
 }
+
+namespace {
+
+// The mesh of `file` with every coordinate multiplied by 2^e (exactly, for
+// normal results), written to the work directory.
+std::string scaled_mesh(const std::string& file, int e, const std::string& name) {
+  CGAL_ext::IO::Medit_mesh m = CGAL_ext::IO::read_medit_mesh(file);
+  for (auto& p : m.vertices)
+    for (double& x : p) x = std::ldexp(x, e);
+  std::filesystem::create_directories(work);
+  const std::string path = (work / name).string();
+  CGAL_ext::IO::write_medit_mesh(path, m);
+  return path;
+}
+
+} // namespace
+
+// The unit of length does not matter: a mesh scaled by 2^+-150 gives the same
+// field (the same energies, alignment, singularities), with every length
+// scaled exactly; a mesh whose size double cannot handle is refused before
+// any work, naming the file and the size.
+TEST_CASE("generate does not depend on the unit of length and refuses sizes beyond 1e60", "[cli][generate]") {
+  const std::string gmsh = data_dir + "/gmsh_box_with_hole.mesh";
+  std::map<int, std::string> report;
+  for (int e : {0, 150, -150}) {
+    const std::string mesh = scaled_mesh(gmsh, e, "scaled_" + std::to_string(e) + ".mesh");
+    const auto out = work / ("scaled_out_" + std::to_string(e));
+    const Run r = run("generate " + mesh + " -o " + out.string());
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    report[e] = slurp(out / "report.json");
+  }
+  for (int e : {150, -150}) {
+    INFO("scale 2^" << e);
+    CHECK(number_after(report[e], "hex_size") == Approx(std::ldexp(number_after(report[0], "hex_size"), e)).epsilon(1e-9));
+    for (const char* key : {"smoothness_energy", "projected_energy", "expected_hexes", "singular_edges", "mean", "max",
+                            "g_orthonormality_max_error", "max_transport_angle_deg", "refinement_iterations"})
+      CHECK(number_after(report[e], key) == number_after(report[0], key));
+  }
+  CHECK(number_after(report[0], "singular_edges") > 0);
+  for (int e : {333, -333, -1040}) { // 1e100, 1e-100 and subnormal coordinates
+    INFO("scale 2^" << e);
+    const std::string mesh = scaled_mesh(data_dir + "/cube_kuhn_2.mesh", e, "extreme_" + std::to_string(e) + ".mesh");
+    const Run r = run("generate " + mesh + " -o " + (work / "extreme_out").string());
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find(mesh + ": the mesh: spans ") != std::string::npos);
+    CHECK(r.err.find("between 1e-60 and 1e+60") != std::string::npos);
+    CHECK(!std::filesystem::exists(work / "extreme_out" / "report.json"));
+  }
+}

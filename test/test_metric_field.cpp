@@ -431,3 +431,53 @@ TEST_CASE("a tet that is flat in double precision is an input error naming it", 
     CHECK(err.problem().find("too flat for double precision") != std::string::npos);
   }
 }
+
+// The unit of length does not matter within the supported sizes: scaled by
+// 2^e, the curl and the connection are scaled by exactly 2^-e; beyond 1e60
+// (or below 1e-60) the constructors refuse the mesh, naming its size.
+TEST_CASE("the field is exact under scalings by powers of two and refuses meshes beyond its supported sizes",
+          "[metric_field]") {
+  Random r(5);
+  const Linear_A f = random_linear_A(r);
+  const Mesh m = kuhn_grid(2);
+  auto build = [&](int e, Tr& tr) {
+    std::vector<std::array<double, 3>> pts = m.points;
+    for (auto& p : pts)
+      for (double& x : p) x = std::ldexp(x, e);
+    CGAL_ext::build_triangulation_from_tets(pts, m.tets, {}, tr);
+  };
+  // the same metric at the same (unscaled) positions
+  auto g_at = [&](int e) {
+    return [&f, e](const Point& p) {
+      const M3 A = f.A(V3(std::ldexp(p.x(), -e), std::ldexp(p.y(), -e), std::ldexp(p.z(), -e)));
+      return M3(A * A);
+    };
+  };
+  Tr tr0;
+  build(0, tr0);
+  const Field f0(tr0, g_at(0));
+  for (int e : {150, -150}) {
+    INFO("scale 2^" << e);
+    Tr tr;
+    build(e, tr);
+    const Field fe(tr, g_at(e));
+    auto c0 = tr0.finite_cells_begin();
+    for (auto c = tr.finite_cells_begin(); c != tr.finite_cells_end(); ++c, ++c0) {
+      CHECK((fe.curl(c) * std::ldexp(1.0, e) - f0.curl(c0)).cwiseAbs().maxCoeff() <= 1e-13);
+      const Point pe = CGAL::centroid(tr.tetrahedron(c)), p0 = CGAL::centroid(tr0.tetrahedron(c0));
+      CHECK((fe.connection(c, pe) * std::ldexp(1.0, e) - f0.connection(c0, p0)).cwiseAbs().maxCoeff() <= 1e-13);
+    }
+  }
+  for (int e : {333, -333, -1040}) {
+    INFO("scale 2^" << e);
+    Tr tr;
+    build(e, tr);
+    try {
+      const Field fe(tr, M3(M3::Identity()));
+      FAIL("no error");
+    } catch (const CGAL_ext::Input_error& x) {
+      CHECK(x.element() == "the mesh");
+      CHECK(x.problem().find("spans ") == 0);
+    }
+  }
+}

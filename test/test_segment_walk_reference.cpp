@@ -487,6 +487,14 @@ TEST_CASE("walk vs reference: scaled, translated, anisotropic and mirrored grids
                              transformed(k2, {-1, 1, 1}, {0, 0, 0}, "_mirrored"),
                              transformed(j2, {0.5, 2, 1.0 / 64}, {-big_offset, 0, 3}, "_flat_far")})
     compare_on(m, degenerate_segments(m, 500, 17), r);
+  // The ends of double: coordinates near 1e300 (the cell array's filters do
+  // not apply: the general path, in interval and exact arithmetic), near
+  // 1e-300, and subnormal.
+  const double e995 = std::ldexp(1.0, 995), em995 = std::ldexp(1.0, -995), em1060 = std::ldexp(1.0, -1060);
+  for (const Test_mesh& m : {transformed(k2, {e995, e995, e995}, {0, 0, 0}, "_2^995"),
+                             transformed(k2, {em995, em995, em995}, {0, 0, 0}, "_2^-995"),
+                             transformed(k2, {em1060, em1060, em1060}, {0, 0, 0}, "_2^-1060")})
+    compare_on(m, degenerate_segments(m, 200, 19), r);
   report("transformed grids", r);
 }
 

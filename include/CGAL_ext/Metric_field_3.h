@@ -27,6 +27,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <sstream>
@@ -368,15 +369,56 @@ private:
 
   void init_cells() {
     std::int64_t max_index = -1;
+    // (long double: the extent of coordinates near +-1e308 does not overflow)
+    long double lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) lo[k] = std::numeric_limits<long double>::infinity(), hi[k] = -lo[k];
     for (Cell_handle c : tr_->finite_cell_handles()) {
       const std::int64_t k = static_cast<std::int64_t>(get(cim_, c));
       if (k < 0) continue;
       domain_cells_.push_back(c);
       max_index = std::max(max_index, k);
+      for (int v = 0; v < 4; ++v)
+        for (int a = 0; a < 3; ++a) {
+          const long double x = CGAL::to_double(c->vertex(v)->point()[a]);
+          lo[a] = std::min(lo[a], x);
+          hi[a] = std::max(hi[a], x);
+        }
     }
+    if (!domain_cells_.empty()) check_extent(std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}));
     n_cells_ = static_cast<std::size_t>(max_index + 1);
     cells_.reset(new Cell_data[n_cells_]);
   }
+  // Areas, volumes and their products with the metric are formed in double:
+  // within these lengths none of them overflows or underflows, and the
+  // results are the same for every unit of length (checked bit for bit under
+  // scalings by 2^+-150). Outside, a clear error rather than wrong numbers.
+
+public:
+  /// Throws `Input_error` if a mesh of size `extent` (the largest side of its
+  /// bounding box) is outside [`supported_length_min`, `supported_length_max`],
+  /// as the constructors do: lets a pipeline refuse such a mesh before any
+  /// other work.
+  /// \param extent the largest side of the mesh's bounding box
+  static void check_extent(long double extent) {
+    if (extent >= supported_length_min && extent <= supported_length_max) return;
+    std::ostringstream s;
+    s.precision(6);
+    s << "spans " << extent << " (the largest side of its bounding box): the metric field computes in double with "
+      << "lengths between " << supported_length_min << " and " << supported_length_max
+      << "; change the unit of length (scale the coordinates)";
+    throw Input_error("", 0, "the mesh", s.str());
+  }
+
+public:
+  /// The range of mesh sizes (the largest side of the domain's bounding
+  /// box) that the metric field accepts: every computation in double stays
+  /// far from overflow and underflow there, so results do not depend on the
+  /// unit of length. The constructors throw `Input_error` outside it.
+  static constexpr double supported_length_min = 1e-60;
+  /// The largest accepted mesh size (see `supported_length_min`).
+  static constexpr double supported_length_max = 1e60;
+
+private:
 
   // The cached data of c, computed on first use. Double-checked with a striped
   // lock; the values depend only on c, so the order of threads does not matter.

@@ -11,6 +11,7 @@
 #include <CGAL/Unique_hash_map.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -27,14 +28,44 @@ struct Tet_mesh_statistics_3 {
   std::size_t edges = 0;           ///< edges of the domain cells
   std::size_t components = 0;      ///< connected components of domain cells, through shared facets
   CGAL::Bbox_3 bbox;               ///< bounding box of the domain's vertices
-  double volume = 0;               ///< total volume of the domain cells
-  double mean_edge_length = 0;     ///< mean length of the edges of the domain cells
+  long double volume = 0;           ///< total volume of the domain cells
+  long double mean_edge_length = 0; ///< mean length of the edges of the domain cells
   double min_dihedral_angle = 0;   ///< smallest dihedral angle of a domain cell, in degrees
   double max_dihedral_angle = 0;   ///< largest dihedral angle of a domain cell, in degrees
 };
 
+namespace internal {
+// Coordinate differences, volumes and angles in long double: on x86-64 its
+// exponent range (about 1e+-4932) holds the volume of any mesh with double
+// coordinates (up to (2e308)^3), so the figures are right at every scale,
+// from subnormal coordinates to 1e308. (Where long double is double, the
+// extreme scales overflow to inf or underflow to 0, as double does.)
+using Stat_vector = std::array<long double, 3>;
+template <class Point>
+Stat_vector stat_difference(const Point& a, const Point& b) {
+  return {static_cast<long double>(CGAL::to_double(a.x())) - static_cast<long double>(CGAL::to_double(b.x())),
+          static_cast<long double>(CGAL::to_double(a.y())) - static_cast<long double>(CGAL::to_double(b.y())),
+          static_cast<long double>(CGAL::to_double(a.z())) - static_cast<long double>(CGAL::to_double(b.z()))};
+}
+inline Stat_vector stat_cross(const Stat_vector& a, const Stat_vector& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+inline long double stat_dot(const Stat_vector& a, const Stat_vector& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+// Dihedral angle in degrees at edge (p, q) between the facets (p, q, r) and (p, q, s).
+template <class Point>
+double stat_dihedral_angle(const Point& p, const Point& q, const Point& r, const Point& s) {
+  const Stat_vector e = stat_difference(q, p);
+  const Stat_vector n1 = stat_cross(e, stat_difference(r, p)), n2 = stat_cross(e, stat_difference(s, p));
+  // atan2(|n1 x n2|, n1 . n2): accurate near 0 and 180 degrees too
+  const Stat_vector c = stat_cross(n1, n2);
+  return static_cast<double>(std::atan2(std::sqrt(stat_dot(c, c)), stat_dot(n1, n2)) * 180.0L / 3.141592653589793238462643383279502884L);
+}
+} // namespace internal
+
 /// \ingroup PkgCGALExtMesh
-/// Computes the figures of the domain of `tr`.
+/// Computes the figures of the domain of `tr`. Volumes, lengths and angles
+/// are computed in `long double` from the double coordinates, so that they
+/// are right at every coordinate scale (on x86-64).
 ///
 /// \tparam Triangulation a CGAL `Triangulation_3`
 /// \tparam Domain_predicate a unary predicate on `Triangulation::Cell_handle`,
@@ -64,11 +95,15 @@ Tet_mesh_statistics_3 compute_tet_mesh_statistics(const Triangulation& tr, Domai
         s.bbox += p[i].bbox();
       }
     }
-    s.volume += CGAL::to_double(CGAL::volume(p[0], p[1], p[2], p[3]));
+    {
+      const internal::Stat_vector a = internal::stat_difference(p[1], p[0]), b = internal::stat_difference(p[2], p[0]),
+                                  c = internal::stat_difference(p[3], p[0]);
+      s.volume += std::abs(internal::stat_dot(a, internal::stat_cross(b, c))) / 6;
+    }
     // The dihedral angle at edge (i, j) is between the facets (i, j, k) and (i, j, l).
     static const int edge_others[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
     for (const auto& e : edge_others) {
-      const double a = std::abs(CGAL::to_double(CGAL::approximate_dihedral_angle(p[e[0]], p[e[1]], p[e[2]], p[e[3]])));
+      const double a = internal::stat_dihedral_angle(p[e[0]], p[e[1]], p[e[2]], p[e[3]]);
       min_angle = std::min(min_angle, a);
       max_angle = std::max(max_angle, a);
     }
@@ -91,7 +126,7 @@ Tet_mesh_statistics_3 compute_tet_mesh_statistics(const Triangulation& tr, Domai
       }
     }
   }
-  double length_sum = 0;
+  long double length_sum = 0;
   for (auto e = tr.finite_edges_begin(); e != tr.finite_edges_end(); ++e) {
     auto circ = tr.incident_cells(*e), done = circ;
     bool in = false;
@@ -103,10 +138,10 @@ Tet_mesh_statistics_3 compute_tet_mesh_statistics(const Triangulation& tr, Domai
     } while (++circ != done);
     if (!in) continue;
     ++s.edges;
-    length_sum += std::sqrt(CGAL::to_double(
-        CGAL::squared_distance(e->first->vertex(e->second)->point(), e->first->vertex(e->third)->point())));
+    const internal::Stat_vector d = internal::stat_difference(e->first->vertex(e->second)->point(), e->first->vertex(e->third)->point());
+    length_sum += std::sqrt(internal::stat_dot(d, d));
   }
-  s.mean_edge_length = s.edges ? length_sum / double(s.edges) : 0;
+  s.mean_edge_length = s.edges ? length_sum / static_cast<long double>(s.edges) : 0;
   s.min_dihedral_angle = s.cells ? min_angle : 0;
   s.max_dihedral_angle = s.cells ? max_angle : 0;
   return s;

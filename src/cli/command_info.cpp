@@ -47,8 +47,8 @@ int command_info(const std::vector<std::string>& args) {
                 r.non_manifold_boundary_edges);
   std::printf("bounding box         [%.17g, %.17g] x [%.17g, %.17g] x [%.17g, %.17g]\n", s.bbox.xmin(), s.bbox.xmax(),
               s.bbox.ymin(), s.bbox.ymax(), s.bbox.zmin(), s.bbox.zmax());
-  std::printf("volume               %.12g\n", s.volume);
-  std::printf("edges                %zu, mean length %.6g\n", s.edges, s.mean_edge_length);
+  std::printf("volume               %.12Lg\n", s.volume);
+  std::printf("edges                %zu, mean length %.6Lg\n", s.edges, s.mean_edge_length);
   std::printf("dihedral angles      min %.6g deg, max %.6g deg\n", s.min_dihedral_angle, s.max_dihedral_angle);
   std::printf("re-oriented tets     %zu", r.reoriented_tets);
   if (r.reoriented_tets) {
