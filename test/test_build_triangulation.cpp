@@ -234,3 +234,59 @@ TEST_CASE("write and read back round-trips vertices and tetrahedra", "[build][me
   CHECK(tr2.number_of_finite_cells() == tr.number_of_finite_cells());
   CHECK(tr2.is_valid());
 }
+
+namespace {
+
+// Adds the unit cube at `origin`, with 8 new vertices, as 6 Kuhn tetrahedra.
+void add_cube(std::vector<std::array<double, 3>>& p, std::vector<std::array<std::size_t, 4>>& t,
+              const std::array<double, 3>& origin) {
+  const std::size_t base = p.size();
+  for (int v = 0; v < 8; ++v) p.push_back({origin[0] + (v & 1), origin[1] + ((v >> 1) & 1), origin[2] + ((v >> 2) & 1)});
+  static const int perms[6][3] = {{1, 2, 4}, {1, 4, 2}, {2, 1, 4}, {2, 4, 1}, {4, 1, 2}, {4, 2, 1}};
+  for (const auto& q : perms) {
+    const std::size_t a = 0, b = std::size_t(q[0]), c = b + std::size_t(q[1]), d = 7;
+    t.push_back({base + a, base + b, base + c, base + d});
+  }
+}
+
+} // namespace
+
+// Two cubes that touch along a face, an edge or a corner, or overlap, each
+// with its own vertices: the walk would take their contact for a boundary
+// and the volume would count the overlap twice. Refused, naming both tets.
+TEST_CASE("parts that overlap or touch without sharing vertices are errors naming two tetrahedra", "[build][bad-input]") {
+  const std::pair<std::array<double, 3>, const char*> cases[] = {{{1, 0, 0}, "touching along a face"},
+                                                                   {{1, 1, 0}, "touching along an edge"},
+                                                                   {{1, 1, 1}, "touching at a corner"},
+                                                                   {{0.5, 0.25, 0.125}, "overlapping"},
+                                                                   {{0.25, 0.25, 1}, "a face inside a face"}};
+  for (const auto& c : cases) {
+    INFO(c.second);
+    std::vector<std::array<double, 3>> p;
+    std::vector<std::array<std::size_t, 4>> t;
+    add_cube(p, t, {0, 0, 0});
+    add_cube(p, t, c.first);
+    Tr tr;
+    try {
+      build_triangulation_from_tets(p, t, {}, tr, Tet_soup_source{"two_cubes.mesh", {}, {}});
+      FAIL("accepted");
+    } catch (const Input_error& e) {
+      INFO(e.what());
+      CHECK(e.file() == "two_cubes.mesh");
+      CHECK(e.element().rfind("tetrahedron ", 0) == 0);
+      CHECK(std::stoi(e.element().substr(12)) > 6); // a tet of the second cube
+      CHECK(e.problem().find("overlaps or touches tetrahedron ") == 0);
+      CHECK(e.problem().find("without sharing vertices") != std::string::npos);
+    }
+  }
+  // Apart, or sharing the vertices where they touch: accepted.
+  std::vector<std::array<double, 3>> p;
+  std::vector<std::array<std::size_t, 4>> t;
+  add_cube(p, t, {0, 0, 0});
+  add_cube(p, t, {1.5, 0, 0});
+  Tr tr;
+  build_triangulation_from_tets(p, t, {}, tr);
+  CHECK(compute_tet_mesh_statistics(tr, Is_tet_mesh_domain_cell()).components == 2);
+  for (const char* f : {"two_cubes_sharing_edge.mesh", "two_cubes_sharing_vertex.mesh", "gmsh_box_with_hole.mesh", "tetgen_cube.mesh"})
+    CHECK_NOTHROW(IO::read_tet_mesh(data_dir + "/" + f, tr));
+}

@@ -415,10 +415,12 @@ TEST_CASE("the PL transport in a shrinking tet converges to the smooth transport
 }
 
 TEST_CASE("a tet that is flat in double precision is an input error naming it", "[metric_field]") {
-  // Exactly positively oriented, but its volume (1e-330 / 6) underflows.
+  // Exactly positively oriented, but its volume (1e-330 / 6) underflows; a
+  // second component of unit size keeps the mesh within the supported sizes.
   const double e = 1e-110;
-  const std::vector<std::array<double, 3>> points{{0, 0, 0}, {e, 0, 0}, {0, e, 0}, {0, 0, e}, {e, e, e}};
-  const std::vector<std::array<std::size_t, 4>> tets{{0, 1, 2, 3}, {1, 2, 3, 4}};
+  const std::vector<std::array<double, 3>> points{{0, 0, 0}, {e, 0, 0}, {0, e, 0}, {0, 0, e}, {e, e, e},
+                                                  {10, 0, 0}, {11, 0, 0}, {10, 1, 0}, {10, 0, 1}};
+  const std::vector<std::array<std::size_t, 4>> tets{{0, 1, 2, 3}, {1, 2, 3, 4}, {5, 6, 7, 8}};
   Tr tr;
   CGAL_ext::build_triangulation_from_tets(points, tets, {}, tr);
   const CGAL_ext::Metric_field_3<Tr> field(tr, Eigen::Matrix3d::Identity().eval());

@@ -7,6 +7,7 @@
 /// Builds a `Tet_mesh_triangulation_3` from a list of points and tetrahedra.
 
 #include <CGAL_ext/Input_error.h>
+#include <CGAL_ext/internal/Boundary_overlap.h>
 #include <CGAL_ext/Tet_mesh_triangulation_3.h>
 
 #include <algorithm>
@@ -95,7 +96,12 @@ struct Facet_record {
 /// \returns what was repaired or found
 /// \throws Input_error for an index out of range, a repeated vertex in a
 ///         tetrahedron, a non-finite coordinate, a zero-volume tetrahedron, a
-///         facet shared by more than two tetrahedra, or an empty tet list.
+///         facet shared by more than two tetrahedra, two tetrahedra on the
+///         same side of their common facet, parts of the mesh that overlap or
+///         touch without sharing vertices (two boundary facets with no common
+///         vertex that meet, decided exactly; see
+///         `internal::find_boundary_overlap()` for what is not detected), or
+///         an empty tet list.
 template <class Geom_traits>
 Tet_mesh_build_report build_triangulation_from_tets(
     const std::vector<std::array<double, 3>>& points, const std::vector<std::array<std::size_t, 4>>& tets,
@@ -226,6 +232,31 @@ Tet_mesh_build_report build_triangulation_from_tets(
         throw Input_error(src.file, internal::tet_line(src, static_cast<std::size_t>(n->info().index)),
                           internal::tet_name(src, static_cast<std::size_t>(n->info().index)),
                           "overlaps tetrahedron " + std::to_string(t + 1) + " across their common facet");
+    }
+  }
+
+  // Parts of the mesh that overlap or touch without sharing vertices: two
+  // boundary facets that meet although they share no vertex.
+  {
+    std::vector<std::array<std::size_t, 3>> triangles;
+    triangles.reserve(boundary.size());
+    for (const auto& bf : boundary) {
+      std::array<std::size_t, 3> t;
+      for (int k = 0; k < 3; ++k) t[std::size_t(k)] = cells[bf.first]->vertex((bf.second + 1 + k) & 3)->info();
+      triangles.push_back(t);
+    }
+    if (const auto hit = internal::find_boundary_overlap(points, triangles)) {
+      const std::size_t ta = boundary[(*hit)[0]].first, tb = boundary[(*hit)[1]].first;
+      auto facet = [&](std::size_t i) {
+        std::array<std::size_t, 3> t = triangles[i];
+        std::sort(t.begin(), t.end());
+        return "(" + std::to_string(t[0] + 1) + ", " + std::to_string(t[1] + 1) + ", " + std::to_string(t[2] + 1) + ")";
+      };
+      throw Input_error(src.file, internal::tet_line(src, std::max(ta, tb)), internal::tet_name(src, std::max(ta, tb)),
+                        "overlaps or touches tetrahedron " + std::to_string(std::min(ta, tb) + 1) +
+                            " without sharing vertices: their boundary facets " + facet((*hit)[ta < tb ? 1 : 0]) +
+                            " and " + facet((*hit)[ta < tb ? 0 : 1]) +
+                            " meet (parts of a mesh must share the vertices where they touch)");
     }
   }
 
