@@ -429,6 +429,20 @@ TEST_CASE("bad input: a clear Input_error", "[tetrahedralize][errors]") {
     expect_error([&] { tetrahedralize_surface(good, o); }, {"facet distance", "nan"});
     expect_error([&] { tetrahedralize_builtin("torus", with_size(1e-4)); }, {"too small", "tetrahedra"});
   }
+  SECTION("a size whose mesh would not fit in memory is refused before Mesh_3, with the estimate") {
+    // A unit cube at size 0.004: about 7.8e7 tetrahedra, 125 GB.
+    REQUIRE(CGAL_ext::physical_memory_bytes() > 1e9);
+    REQUIRE(CGAL_ext::physical_memory_bytes() < 1e14);
+    expect_error([&] { tetrahedralize_builtin("cube", with_size(0.004)); },
+                 {"cube", "too small", "tetrahedra would be made, needing about", "GB, more than the memory of this machine"});
+    Tetrahedralize_options o = with_size(0.3);
+    o.memory_limit = 1e5; // 0.1 MB: a few dozen tetrahedra
+    expect_error([&] { tetrahedralize_builtin("ball", o); }, {"ball", "more than the memory limit of 0.0001 GB"});
+    o.memory_limit = -1; // no limit
+    CHECK(!tetrahedralize_builtin("ball", o).tetrahedra.empty());
+    o.memory_limit = nan;
+    expect_error([&] { tetrahedralize_builtin("ball", o); }, {"memory limit must be finite"});
+  }
   SECTION("unknown built-in shape") {
     expect_error([&] { tetrahedralize_builtin("dodecahedron"); },
                  {"dodecahedron", "unknown", "ball", "torus", "box_with_hole", "blobby", "cube"});

@@ -50,7 +50,30 @@ struct Tetrahedralize_options {
   /// They remove the flat tetrahedra and cost about a third of the
   /// refinement time. The slow global optimizers (Lloyd, ODT) are never run.
   bool optimize = true;
+  /// The memory, in bytes, that the meshing and what follows may use: a size
+  /// whose estimated mesh would need more is refused before Mesh_3 starts,
+  /// with the estimate. 0 means the physical memory of this machine; a
+  /// negative value means no limit. The estimate is
+  /// `tetrahedra_per_unit_volume` tetrahedra per `size^3` of the domain's
+  /// volume, and `bytes_per_tetrahedron` each (the peak of `metric-frames
+  /// generate`, Mesh_3 included, measured on 10^4 to 1.3 10^6 tetrahedra).
+  double memory_limit = 0;
 };
+
+/// \ingroup PkgCGALExtMesh
+/// About how many tetrahedra Mesh_3 makes per `size^3` of volume (4.4 to 4.8
+/// measured on fine meshes of the built-in shapes and of CGAL's fandisk and
+/// elephant, up to 10 on coarse meshes dominated by sharp edges).
+constexpr double tetrahedra_per_unit_volume = 5.0;
+/// \ingroup PkgCGALExtMesh
+/// Peak memory per tetrahedron of a whole `generate` run, Mesh_3 included
+/// (1.50 GB for 1.0 10^6 tetrahedra, 1.85 GB for 1.27 10^6; doc/benchmarks.md),
+/// rounded up.
+constexpr double bytes_per_tetrahedron = 1600;
+
+/// \ingroup PkgCGALExtMesh
+/// The physical memory of this machine in bytes (0 if unknown).
+double physical_memory_bytes();
 
 /// \ingroup PkgCGALExtMesh
 /// What `tetrahedralize_surface()` and `tetrahedralize_builtin()` made.

@@ -74,6 +74,9 @@ const char* generate_help =
     "  --size h              Mesh_3 size for surface and builtin inputs: it bounds\n"
     "                        the tetrahedra's circumradii; edges come out about\n"
     "                        1.2-1.35 h (default: bounding-box diagonal / 20)\n"
+    "  --max-memory GB       refuse a --size whose estimated mesh would need more\n"
+    "                        (about 5 tets per size^3 of volume, 1.6 KB each;\n"
+    "                        default: this machine's memory; 0: no limit)\n"
     "  --smooth-surface      do not protect the surface's sharp edges (creases\n"
     "                        above 60 degrees) in Mesh_3: for organic models\n"
     "  --boundary-weight W   weight of the soft boundary term (default 100)\n"
@@ -303,6 +306,11 @@ int command_generate(const std::vector<std::string>& args) {
   const auto size = a.option("--size");
   if (size) mesh_opt.size = parse_positive(a, "--size", *size);
   mesh_opt.sharp_features = !a.flag("--smooth-surface");
+  if (const auto m = a.option("--max-memory")) {
+    // 0: no limit; otherwise GB (the default is this machine's memory)
+    const double gb = *m == "0" ? 0 : parse_positive(a, "--max-memory", *m);
+    mesh_opt.memory_limit = gb > 0 ? gb * 1e9 : -1;
+  }
   Frame_field_options opt;
   if (const auto w = a.option("--boundary-weight")) opt.boundary_weight = parse_positive(a, "--boundary-weight", *w);
   opt.hard_boundary = !a.flag("--soft-boundary");
@@ -330,8 +338,8 @@ int command_generate(const std::vector<std::string>& args) {
   const bool is_surface = !is_builtin && has_extension(input, {".off", ".obj", ".stl", ".ply"});
   if (!is_builtin && !is_mesh && !is_surface)
     a.fail("INPUT '" + input + "': expected a .mesh tet mesh, a surface (.off .obj .stl .ply) or builtin:NAME");
-  if ((size || !mesh_opt.sharp_features) && is_mesh)
-    a.fail("--size and --smooth-surface apply to surface and builtin inputs; a .mesh input is used as it is");
+  if ((size || !mesh_opt.sharp_features || mesh_opt.memory_limit != 0) && is_mesh)
+    a.fail("--size, --smooth-surface and --max-memory apply to surface and builtin inputs; a .mesh input is used as it is");
   if (sol_path && !is_mesh)
     a.fail("--metric SOL needs a .mesh INPUT: a generated mesh has no vertices the .sol could match");
   std::unique_ptr<Metric_expression> formula;

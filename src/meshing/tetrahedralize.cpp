@@ -38,6 +38,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <unistd.h>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -72,13 +73,6 @@ using Implicit_tr = CGAL::Mesh_triangulation_3<Implicit_domain, CGAL::Default, C
 using Implicit_c3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Implicit_tr>;
 using Implicit_function = std::function<double(const Point&)>;
 
-// Mesh_3 makes about this many tetrahedra per size^3 of volume (measured on
-// the built-in shapes and on CGAL's fandisk and elephant: 4.4 to 4.8 for fine
-// meshes, up to 10 for coarse meshes dominated by sharp edges).
-constexpr double tets_per_unit_volume = 5.0;
-// Refused beyond this estimated number of tetrahedra (Mesh_3 needs about
-// 0.4 KB per tetrahedron: 40 GB).
-constexpr double max_estimated_tets = 1e8;
 
 using Clock = std::chrono::steady_clock;
 
@@ -96,6 +90,15 @@ public:
 private:
   CGAL::Random saved_;
 };
+
+} // namespace
+
+double physical_memory_bytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && page > 0 ? double(pages) * double(page) : 0;
+}
+
+namespace {
 
 std::string number(double x) {
   std::ostringstream s;
@@ -126,11 +129,18 @@ Sizes resolve_sizes(const Tetrahedralize_options& o, double bbox_diagonal, doubl
   s.facet_distance = o.facet_distance > 0 ? o.facet_distance : s.size / 10;
   if (!(s.size > 0) || !std::isfinite(s.size))
     throw Input_error(file, 0, element, "the domain is degenerate: its bounding box has no extent");
-  const double estimate = tets_per_unit_volume * volume / (s.size * s.size * s.size);
-  if (!(estimate <= max_estimated_tets))
+  if (!std::isfinite(o.memory_limit))
+    throw Input_error(file, 0, element, "the memory limit must be finite (got " + number(o.memory_limit) + ")");
+  const double estimate = tetrahedra_per_unit_volume * volume / (s.size * s.size * s.size);
+  const double bytes = estimate * bytes_per_tetrahedron;
+  const double limit = o.memory_limit > 0 ? o.memory_limit : o.memory_limit < 0 ? HUGE_VAL : physical_memory_bytes();
+  // (a limit of 0 where the machine's memory is unknown: no limit)
+  if (limit > 0 && !(bytes <= limit))
     throw Input_error(file, 0, element,
                       "the size " + number(s.size) + " is too small for this domain: about " + number(estimate) +
-                          " tetrahedra would be made, more than the limit of " + number(max_estimated_tets));
+                          " tetrahedra would be made, needing about " + number(bytes / 1e9) + " GB, more than " +
+                          (o.memory_limit > 0 ? "the memory limit of " : "the memory of this machine, ") +
+                          number(limit / 1e9) + " GB (give a larger size, or a larger memory limit to go on)");
   return s;
 }
 
