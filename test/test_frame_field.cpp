@@ -437,3 +437,30 @@ TEST_CASE("the coarse level of the initialisation changes the iterations, not th
   for (std::size_t i = 0; i < with.size(); ++i) worst = std::max(worst, (with.sh(i) - without.sh(i)).norm());
   CHECK(worst < 1e-6);
 }
+
+// The iteration bounds of the CG initialisation and of L-BFGS are reported
+// when they stop a stage (in the statistics and in the progress line), and
+// not otherwise.
+TEST_CASE("iteration limits that stop a stage are reported", "[frame_field]") {
+  auto mesh = pulled_back_box(6);
+  const Field field = flat_metric_field(mesh->tr);
+  std::map<std::string, std::string> lines;
+  Frame_field_options opt;
+  opt.progress = [&](const std::string& stage, double, const std::string& detail) { lines[stage] = detail; };
+  Frames normal(field);
+  const Frame_field_statistics a = normal.compute(opt);
+  CHECK(!a.linear_iteration_limit_reached);
+  CHECK(!a.refinement_iteration_limit_reached);
+  CHECK(lines["refinement"].find("iteration limit") == std::string::npos);
+  opt.max_linear_iterations = 1;
+  opt.aggregate_size = 0;
+  opt.max_refinement_iterations = 2;
+  Frames capped(field);
+  const Frame_field_statistics b = capped.compute(opt);
+  CHECK(b.linear_iterations == 1);
+  CHECK(b.linear_iteration_limit_reached);
+  CHECK(b.refinement_iterations == 2);
+  CHECK(b.refinement_iteration_limit_reached);
+  CHECK(lines["linear initialisation"].find("; stopped by the iteration limit") != std::string::npos);
+  CHECK(lines["refinement"].find("; stopped by the iteration limit") != std::string::npos);
+}

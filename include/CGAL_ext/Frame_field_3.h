@@ -106,6 +106,11 @@ struct Frame_field_statistics {
   std::size_t degenerate_projections = 0;
   /// L-BFGS iterations and energy evaluations.
   int refinement_iterations = 0, energy_evaluations = 0;
+  /// Whether an iteration bound stopped a stage (`max_linear_iterations`
+  /// before the CG residual reached `linear_tolerance`, or
+  /// `max_refinement_iterations` while L-BFGS still made progress): reached
+  /// only on pathological input, and said in the stage's progress line.
+  bool linear_iteration_limit_reached = false, refinement_iteration_limit_reached = false;
   /// Smoothness energy `sum_f w_f |s_j - D(T_ij) s_i|^2` after the
   /// projection and at the end.
   double projected_energy = 0, smoothness_energy = 0;
@@ -269,7 +274,8 @@ public:
            std::to_string(stats_.linear_iterations) + " CG iterations, residual " + format(stats_.linear_residual) +
                (stats_.coarse_unknowns ? " (after " + std::to_string(stats_.coarse_iterations) + " on a coarse level of " +
                                              std::to_string(stats_.coarse_unknowns / 9) + " aggregates)"
-                                       : std::string()));
+                                       : std::string()) +
+               (stats_.linear_iteration_limit_reached ? "; stopped by the iteration limit" : ""));
     project();
     stats_.projected_energy = smoothness_energy();
     stats_.seconds_projection = t.lap();
@@ -279,7 +285,8 @@ public:
     stats_.seconds_refinement = t.lap();
     report("refinement", stats_.seconds_refinement,
            std::to_string(stats_.refinement_iterations) + " L-BFGS iterations, energy " +
-               format(stats_.smoothness_energy));
+               format(stats_.smoothness_energy) +
+               (stats_.refinement_iteration_limit_reached ? "; stopped by the iteration limit" : ""));
     measure();
     return stats_;
   }
@@ -830,6 +837,7 @@ private:
     for (std::size_t i = 0; i < n; ++i)
       if (constraint_of_[i] >= 0) b[i] = constraints_[constraint_of_[i]].b;
     stats_.linear_iterations = stats_.coarse_iterations = 0;
+    stats_.linear_iteration_limit_reached = false;
     stats_.linear_residual = 0;
     stats_.coarse_unknowns = 0;
     if (dot(b, b) > 0) {
@@ -864,6 +872,8 @@ private:
           pcg(x, b, [&](const std::vector<Sh_vector>& v, std::vector<Sh_vector>& y) { apply_linear(v, y); },
               [&](std::size_t i, const Sh_vector& r) { return precondition(i, r); }, opt_.linear_tolerance,
               "linear initialisation", stats_.linear_residual);
+      stats_.linear_iteration_limit_reached =
+          stats_.linear_iterations >= opt_.max_linear_iterations && stats_.linear_residual > opt_.linear_tolerance;
     }
     s_ = std::move(x);
   }
@@ -954,6 +964,7 @@ private:
     const std::size_t n = size();
     stats_.refinement_iterations = 0;
     stats_.energy_evaluations = 0;
+    stats_.refinement_iteration_limit_reached = false;
     if (opt_.max_refinement_iterations <= 0) return;
     const Sh_vector s0 = octahedral_reference_sh();
     std::vector<Eigen::Vector3d> g(n), g_new(n), p(n);
@@ -1095,6 +1106,7 @@ private:
       if (opt_.iteration_progress) opt_.iteration_progress("refinement", it + 1, std::ldexp(E, weight_exponent_));
       small_steps = decrease <= opt_.energy_tolerance * E ? small_steps + 1 : 0;
       if (small_steps >= 3) break;
+      if (it + 1 == opt_.max_refinement_iterations) stats_.refinement_iteration_limit_reached = true;
     }
     if (opt_.hard_boundary) // undo the rounding drift of the constrained axes
       internal::parallel_for_each_index(n, [&](std::size_t i) {
