@@ -196,3 +196,25 @@ TEST_CASE("generate: a metric that jumps by 1e30 between vertices is an error na
   }
   CHECK(!std::filesystem::exists(work / "jumping_out" / "frames.fra"));
 }
+
+// A mesh whose size double cannot handle (coordinates scaled to 1e100, or
+// subnormal) is refused before any transport, naming the mesh file.
+TEST_CASE("transport: a mesh beyond the supported sizes is one error naming the mesh", "[cli][transport][extreme]") {
+  CGAL_ext::IO::Medit_mesh m = CGAL_ext::IO::read_medit_mesh(gmsh_box);
+  std::string sol = "MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n" + std::to_string(m.vertices.size()) + "\n1 3\n";
+  for (std::size_t i = 0; i < m.vertices.size(); ++i) sol += "1 0 1 0 0 1\n";
+  const std::string identity = file_with("identity_box.sol", sol + "End\n");
+  for (int e : {333, -1040}) {
+    INFO("scale 2^" << e);
+    CGAL_ext::IO::Medit_mesh s = m;
+    for (auto& p : s.vertices)
+      for (double& x : p) x = std::ldexp(x, e);
+    const std::string path = (work / ("box_2^" + std::to_string(e) + ".mesh")).string();
+    CGAL_ext::IO::write_medit_mesh(path, s);
+    const std::string pairs = file_with("scaled_pairs.txt", "0 0 0 0 0 0\n");
+    const Run r = run("transport " + path + " --metric " + identity + " --pairs " + pairs);
+    CHECK(r.exit_code == 1);
+    CHECK(r.out.empty());
+    CHECK(r.err.find(path + ": the mesh: spans ") != std::string::npos);
+  }
+}

@@ -394,10 +394,30 @@ private:
   // scalings by 2^+-150). Outside, a clear error rather than wrong numbers.
 
 public:
+  /// Throws `Input_error` naming `file` if the finite vertices of `tr` span
+  /// a size (the largest side of their bounding box) outside
+  /// [`supported_length_min`, `supported_length_max`], as the constructors
+  /// do for the domain: lets a pipeline refuse such a mesh before any other work.
+  /// \param tr the triangulation
+  /// \param file the mesh's file, for the message
+  static void check_extent(const Triangulation& tr, const std::string& file) {
+    long double lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) lo[k] = std::numeric_limits<long double>::infinity(), hi[k] = -lo[k];
+    for (auto v : tr.finite_vertex_handles())
+      for (int k = 0; k < 3; ++k) {
+        const long double x = CGAL::to_double(v->point()[k]);
+        lo[k] = std::min(lo[k], x);
+        hi[k] = std::max(hi[k], x);
+      }
+    try {
+      check_extent(std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}));
+    } catch (const Input_error& e) {
+      throw Input_error(file, 0, e.element(), e.problem());
+    }
+  }
+
   /// Throws `Input_error` if a mesh of size `extent` (the largest side of its
-  /// bounding box) is outside [`supported_length_min`, `supported_length_max`],
-  /// as the constructors do: lets a pipeline refuse such a mesh before any
-  /// other work.
+  /// bounding box) is outside [`supported_length_min`, `supported_length_max`].
   /// \param extent the largest side of the mesh's bounding box
   static void check_extent(long double extent) {
     if (extent >= supported_length_min && extent <= supported_length_max) return;

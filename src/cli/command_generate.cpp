@@ -24,7 +24,6 @@
 #include <CGAL_ext/tetrahedralize.h>
 
 #include <algorithm>
-#include <limits>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -407,22 +406,9 @@ int command_generate(const std::vector<std::string>& args) {
   }
   if (build.unused_vertices) std::fprintf(stderr, "[note] %zu vertices are used by no tetrahedron\n", build.unused_vertices);
   stage("build triangulation", lap(), std::to_string(build.boundary_facets) + " boundary facets");
-  {
-    // A mesh too large or too small for double is refused here, before the
-    // hex size and the metric are derived from its lengths.
-    long double lo[3], hi[3];
-    for (int k = 0; k < 3; ++k) lo[k] = std::numeric_limits<long double>::infinity(), hi[k] = -lo[k];
-    for (Tr::Vertex_handle v : tr.finite_vertex_handles())
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = std::min<long double>(lo[k], v->point()[k]);
-        hi[k] = std::max<long double>(hi[k], v->point()[k]);
-      }
-    try {
-      Metric_field_3<Tr>::check_extent(std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}));
-    } catch (const Input_error& e) {
-      throw Input_error(input, 0, e.element(), e.problem());
-    }
-  }
+  // A mesh too large or too small for double is refused here, before the
+  // hex size and the metric are derived from its lengths.
+  Metric_field_3<Tr>::check_extent(tr, input);
 
   // 2. The metric, scaled to the hex size: g / h^2.
   if (!has_metric && !hex.scaled) {

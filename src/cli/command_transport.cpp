@@ -66,6 +66,7 @@ int command_transport(const std::vector<std::string>& args) {
   IO::read_tet_mesh(mesh_path, tr, &mesh);
   timer.stage("read and build mesh");
   const std::vector<Eigen::Matrix3d> metrics = IO::read_medit_sol(metric_path, mesh.vertices.size());
+  Metric_field_3<Tr>::check_extent(tr, mesh_path);
   const Metric_field_3<Tr> field(tr, metrics, metric_path);
   field.precompute();
   timer.stage("read metric");
