@@ -197,3 +197,36 @@ TEST_CASE("metric writes a .sol from formulas, and rejects bad formulas and non-
     CHECK(!std::filesystem::exists("x.sol"));
   }
 }
+
+TEST_CASE("a 10 MB token is echoed as its first 40 characters and its length", "[cli][bad-input]") {
+  const std::string cube = data_dir + "/cube_kuhn_2.mesh";
+  const std::string digits(10000000, '1');
+  const std::string quoted = "'" + std::string(40, '1') + "...' (10000000 characters)";
+  const std::string mesh =
+      file_with("long_number.mesh", "Dimension 3\nVertices\n4\n0 0 0 1\n1 0 " + digits + " 1\n0 1 0 1\n0 0 1 1\n");
+  const Run r = run("info " + mesh);
+  CHECK(r.exit_code == 1);
+  REQUIRE(r.err.size() < 1000); // else Catch would print 10 MB
+  CHECK(r.err ==
+        "metric-frames info: error: " + mesh + ":5: vertex 2: a coordinate " + quoted + " overflows a double\n");
+  const std::string segments = file_with("long_number.txt", "0 0 0 1 1 " + digits + "\n");
+  const Run w = run("walk " + cube + " --segments " + segments);
+  CHECK(w.exit_code == 1);
+  REQUIRE(w.err.size() < 1000);
+  CHECK(w.err.find("metric-frames walk: error: " + segments + ":1: " + quoted + " is not a finite number\n") !=
+        std::string::npos);
+}
+
+TEST_CASE("a NUL byte in an input file is shown escaped and the whole message reaches stderr", "[cli][bad-input]") {
+  const std::string cube = data_dir + "/cube_kuhn_2.mesh";
+  const std::string mesh = file_with("nul.mesh", std::string("Dimension 3\nVertices\n4\n0 0 0 1\n1 0 0") + '\0' +
+                                                     "zz 1\n0 1 0 1\n0 0 1 1\n");
+  const Run r = run("info " + mesh);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err == "metric-frames info: error: " + mesh + ":5: vertex 2: expected a coordinate, found '0\\x00zz'\n");
+  const std::string segments = file_with("nul.txt", std::string("0 0 0 1 1 1") + '\0' + "\n");
+  const Run w = run("walk " + cube + " --segments " + segments);
+  CHECK(w.exit_code == 1);
+  CHECK(w.err.find("metric-frames walk: error: " + segments + ":1: '1\\x00' is not a finite number\n") !=
+        std::string::npos);
+}

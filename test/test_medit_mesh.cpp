@@ -198,3 +198,36 @@ TEST_CASE("bad files give one clear error naming file and line", "[medit][bad-in
     CHECK(e.problem() == "expected a vertex index, found '2.5'");
   }
 }
+
+TEST_CASE("a 10 MB token is quoted by its first 40 characters and its length", "[medit][bad-input]") {
+  const std::string digits(10000000, '1');
+  const std::string quoted = "'" + std::string(40, '1') + "...' (10000000 characters)";
+  SECTION("a coordinate that overflows") {
+    const Input_error e = read_error("long_coordinate.mesh", "Dimension 3\nVertices\n4\n0 0 0 1\n1 0 " + digits +
+                                                                 " 1\n0 1 0 1\n0 0 1 1\n");
+    CHECK(e.line() == 5);
+    CHECK(e.element() == "vertex 2");
+    REQUIRE(std::string(e.what()).size() < 300); // else Catch would print 10 MB
+    CHECK(e.problem() == "a coordinate " + quoted + " overflows a double");
+  }
+  SECTION("an index that overflows") {
+    const Input_error e = read_error("long_index.mesh", "Dimension 3\nVertices\n4\n0 0 0 1\n1 0 0 1\n0 1 0 1\n0 0 1 1\n"
+                                                        "Tetrahedra\n1\n1 2 3 " + digits + " 1\n");
+    REQUIRE(std::string(e.what()).size() < 300);
+    CHECK(e.problem() == "a vertex index " + quoted + " is out of range");
+  }
+  SECTION("a garbage token") {
+    const Input_error e = read_error("long_garbage.mesh", "Dimension 3\n" + std::string(10000000, 'x') + "\n");
+    REQUIRE(std::string(e.what()).size() < 300);
+    CHECK(e.problem() == "unknown keyword '" + std::string(40, 'x') + "...' (10000000 characters)");
+  }
+}
+
+TEST_CASE("a NUL byte in a token is shown escaped and does not cut the message", "[medit][bad-input]") {
+  const Input_error e = read_error("nul.mesh", std::string("Dimension 3\nVertices\n4\n0 0 0 1\n1 0 0") + '\0' +
+                                                      "zz 1\n0 1 0 1\n0 0 1 1\n");
+  CHECK(e.line() == 5);
+  CHECK(e.problem() == "expected a coordinate, found '0\\x00zz'");
+  const std::string what = e.what(); // what() is a C string: cut at the first NUL
+  CHECK(what == e.file() + ":5: vertex 2: expected a coordinate, found '0\\x00zz'");
+}

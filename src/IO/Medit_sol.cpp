@@ -124,9 +124,9 @@ std::vector<Eigen::Matrix3d> read_medit_sol(const std::string& path, std::size_t
     } else {
       const bool numeric =
           !kw.empty() && (std::isdigit(static_cast<unsigned char>(kw[0])) || kw[0] == '-' || kw[0] == '+' || kw[0] == '.');
-      tk.fail("", numeric ? "unexpected number '" + std::string(kw.substr(0, 40)) +
-                                "' where a keyword was expected (more records than the count says?)"
-                          : "unknown keyword '" + std::string(kw.substr(0, 40)) + "'");
+      tk.fail("", numeric ? "unexpected number " + Input_error::quote(kw) +
+                                " where a keyword was expected (more records than the count says?)"
+                          : "unknown keyword " + Input_error::quote(kw));
     }
   }
   if (!have_solution) throw Input_error(path, 0, "", "no SolAtVertices section");

@@ -54,9 +54,10 @@ std::int64_t Medit_tokenizer::read_int(const char* what) {
   if (!s.empty() && s.front() == '+') s.remove_prefix(1);
   std::int64_t v = 0;
   const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (r.ec == std::errc::result_out_of_range) fail("", std::string(what) + " '" + std::string(t) + "' is out of range");
+  if (r.ec == std::errc::result_out_of_range)
+    fail("", std::string(what) + " " + Input_error::quote(t) + " is out of range");
   if (r.ec != std::errc() || r.ptr != s.data() + s.size())
-    fail("", std::string("expected ") + what + ", found '" + std::string(t.substr(0, 40)) + "'");
+    fail("", std::string("expected ") + what + ", found " + Input_error::quote(t));
   return v;
 }
 
@@ -67,10 +68,11 @@ double Medit_tokenizer::read_double(const char* what) {
   double v = 0;
   const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
   // from_chars reports overflow as out of range: that is an infinite value for us.
-  if (r.ec == std::errc::result_out_of_range) fail("", std::string(what) + " '" + std::string(t) + "' overflows a double");
+  if (r.ec == std::errc::result_out_of_range)
+    fail("", std::string(what) + " " + Input_error::quote(t) + " overflows a double");
   if (r.ec != std::errc() || r.ptr != s.data() + s.size())
-    fail("", std::string("expected ") + what + ", found '" + std::string(t.substr(0, 40)) + "'");
-  if (!std::isfinite(v)) fail("", std::string(what) + " is not finite ('" + std::string(t) + "')");
+    fail("", std::string("expected ") + what + ", found " + Input_error::quote(t));
+  if (!std::isfinite(v)) fail("", std::string(what) + " is not finite (" + Input_error::quote(t) + ")");
   return v;
 }
 

@@ -37,7 +37,7 @@ std::vector<Point_pair> read_point_pairs(const std::string& path) {
         if (tok.front() == '+') tok.remove_prefix(1);
         const auto r = std::from_chars(tok.data(), tok.data() + tok.size(), v[n]);
         if (r.ec != std::errc() || r.ptr != tok.data() + tok.size() || !std::isfinite(v[n]))
-          throw Input_error(path, number, "", "'" + std::string(tok.substr(0, 40)) + "' is not a finite number");
+          throw Input_error(path, number, "", Input_error::quote(tok) + " is not a finite number");
         ++n;
       }
       if (end == std::string_view::npos) break;
