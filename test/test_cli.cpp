@@ -4,6 +4,9 @@
 
 #include "cli_test_support.h"
 
+#include <sys/stat.h>
+
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
@@ -229,4 +232,52 @@ TEST_CASE("a NUL byte in an input file is shown escaped and the whole message re
   CHECK(w.exit_code == 1);
   CHECK(w.err.find("metric-frames walk: error: " + segments + ":1: '1\\x00' is not a finite number\n") !=
         std::string::npos);
+}
+
+TEST_CASE("a directory given as an input file is reported as a directory", "[cli][bad-input]") {
+  const std::string cube = data_dir + "/cube_kuhn_2.mesh";
+  const std::string dir = (work / "a_directory.mesh").string();
+  std::filesystem::create_directories(dir);
+  const std::string message = "error: " + dir + ": is a directory, not a file\n";
+  const Run i = run("info " + dir);
+  CHECK(i.exit_code == 1);
+  CHECK(i.err == "metric-frames info: " + message);
+  const Run w = run("walk " + cube + " --segments " + dir);
+  CHECK(w.exit_code == 1);
+  CHECK(w.err.find(message) != std::string::npos);
+  const Run t = run("transport " + cube + " --metric " + dir + " --pairs " + file_with("pairs.txt", "0 0 0 1 1 1\n"));
+  CHECK(t.exit_code == 1);
+  CHECK(t.err.find(message) != std::string::npos);
+  const std::string obj = (work / "a_directory.obj").string();
+  std::filesystem::create_directories(obj);
+  const Run g = run("generate " + obj + " -o " + (work / "directory_out").string());
+  CHECK(g.exit_code == 1);
+  CHECK(g.err.find("error: " + obj + ": is a directory, not a file\n") != std::string::npos);
+}
+
+TEST_CASE("an endless device or a FIFO as input is refused at once with exit status 1", "[cli][bad-input]") {
+  const std::string cube = data_dir + "/cube_kuhn_2.mesh";
+  const auto start = std::chrono::steady_clock::now();
+  const std::string message = "error: /dev/zero: is not a regular file (a device, a FIFO or a socket)\n";
+  const Run i = run_bounded("info /dev/zero");
+  CHECK(i.exit_code == 1);
+  CHECK(i.err == "metric-frames info: " + message);
+  const std::string pairs = file_with("pairs.txt", "0.5 0.5 0.5 1.5 1.5 1.5\n");
+  const Run t = run_bounded("transport " + cube + " --metric /dev/zero --pairs " + pairs);
+  CHECK(t.exit_code == 1);
+  CHECK(t.err.find(message) != std::string::npos);
+  const Run g = run_bounded("generate " + cube + " --metric /dev/zero -o " + (work / "zero_out").string());
+  CHECK(g.exit_code == 1);
+  CHECK(g.err.find(message) != std::string::npos);
+  const Run w = run_bounded("walk " + cube + " --segments /dev/zero");
+  CHECK(w.exit_code == 1);
+  CHECK(w.err.find(message) != std::string::npos);
+  // A FIFO without a writer: opening it would wait forever.
+  const std::string fifo = (work / "fifo.mesh").string();
+  std::filesystem::remove(fifo);
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  const Run f = run_bounded("info " + fifo, 10);
+  CHECK(f.exit_code == 1);
+  CHECK(f.err.find(fifo + ": is not a regular file") != std::string::npos);
+  CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 20);
 }

@@ -231,3 +231,14 @@ TEST_CASE("a NUL byte in a token is shown escaped and does not cut the message",
   const std::string what = e.what(); // what() is a C string: cut at the first NUL
   CHECK(what == e.file() + ":5: vertex 2: expected a coordinate, found '0\\x00zz'");
 }
+
+TEST_CASE("a directory is reported as a directory and not as an empty file", "[medit][bad-input]") {
+  const auto dir = std::filesystem::temp_directory_path() / "cgal_ext_test_medit_mesh" / "a_directory.mesh";
+  std::filesystem::create_directories(dir);
+  try {
+    read_medit_mesh(dir.string());
+    FAIL("no error");
+  } catch (const Input_error& e) {
+    CHECK(std::string(e.what()) == dir.string() + ": is a directory, not a file");
+  }
+}

@@ -434,3 +434,10 @@ TEST_CASE("bad input: a clear Input_error", "[tetrahedralize][errors]") {
                  {"dodecahedron", "unknown", "ball", "torus", "box_with_hole", "blobby", "cube"});
   }
 }
+
+TEST_CASE("a directory given as a surface file is reported as a directory", "[tetrahedralize][errors]") {
+  const fs::path dir = scratch() / "a_directory.off";
+  fs::create_directories(dir);
+  expect_error([&] { CGAL_ext::tetrahedralize_surface(dir.string()); },
+               {dir.string() + ": is a directory, not a file"});
+}

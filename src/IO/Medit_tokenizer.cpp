@@ -2,6 +2,8 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #include <CGAL_ext/IO/Medit_tokenizer.h>
 
+#include "input_file.h"
+
 #include <cctype>
 #include <fstream>
 #include <iterator>
@@ -11,6 +13,7 @@ namespace CGAL_ext {
 namespace IO {
 
 Medit_tokenizer::Medit_tokenizer(std::string path) : path_(std::move(path)) {
+  internal::check_input_file(path_);
   std::ifstream in(path_, std::ios::binary);
   if (!in) throw Input_error(path_, 0, "", "cannot open the file for reading");
   std::ostringstream ss;

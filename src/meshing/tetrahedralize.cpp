@@ -7,6 +7,8 @@
 // of the library that instantiates Mesh_3.
 #include <CGAL_ext/tetrahedralize.h>
 
+#include "../IO/input_file.h"
+
 // False positives inside Boost.Graph (instantiated by detect_features).
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
@@ -355,9 +357,7 @@ Surface read_closed_surface(const std::string& path, std::vector<std::string>& r
     throw Input_error(path, 0, "",
                       (ext.empty() ? std::string("no file extension") : "unsupported extension '" + ext + "'") +
                           ": expected .off, .obj, .stl or .ply");
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw Input_error(path, 0, "", "cannot open the file for reading: it is a directory");
+  IO::internal::check_input_file(path);
   if (!std::ifstream(path, std::ios::binary)) throw Input_error(path, 0, "", "cannot open the file for reading");
 
   std::vector<Point> points;
