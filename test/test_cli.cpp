@@ -281,3 +281,21 @@ TEST_CASE("an endless device or a FIFO as input is refused at once with exit sta
   CHECK(f.err.find(fifo + ": is not a regular file") != std::string::npos);
   CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 20);
 }
+
+TEST_CASE("metric accepts 1e308 I and names the value of a tensor whose inverse overflows", "[cli][metric]") {
+  const std::string cube = data_dir + "/cube_kuhn_2.mesh";
+  const std::string out = (work / "big.sol").string();
+  std::filesystem::remove(out);
+  const Run r = run("metric " + cube + " --expr '1e308, 0, 1e308, 0, 0, 1e308' -o " + out);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.err.find("sizes 1/sqrt(eigenvalue) in [1e-154, 1e-154]; max anisotropy 1;") != std::string::npos);
+  const std::string sol = slurp(out);
+  CHECK(sol.find("SolAtVertices\n27\n1 3\n1e+308 0 1e+308 0 0 1e+308\n") != std::string::npos);
+  CHECK(sol.find("nan") == std::string::npos);
+  CHECK(sol.find("inf") == std::string::npos);
+  const Run t = run("metric " + cube + " --expr '1e-320, 0, 1e-320, 0, 0, 1e-320' --force -o " + out);
+  CHECK(t.exit_code == 1);
+  CHECK(t.err.find("vertex 1") != std::string::npos);
+  CHECK(t.err.find("smallest eigenvalue 9.99989e-321") != std::string::npos);
+}

@@ -369,3 +369,29 @@ TEST_CASE("generate meshes a built-in shape with Mesh_3", "[cli][generate]") {
       CHECK(dot > std::cos(M_PI / 4) / (0.35 * 0.35)); // gradients of length 1 / 0.35
     }
 }
+
+TEST_CASE("generate with a metric of 1e308 I is a clear error naming the vertex and the value", "[cli][generate][extreme]") {
+  std::string sol = "MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n27\n1 3\n";
+  for (int i = 0; i < 27; ++i) sol += "1e308 0 1e308 0 0 1e308\n";
+  const std::string path = file_with("big.sol", sol + "End\n");
+  const std::string out = (work / "big_metric_out").string();
+  // sqrt(det g) = 1e462: the metric volume, the expected number of hexahedra, overflows.
+  const Run r = run("generate " + cube + " --metric " + path + " -o " + out);
+  CHECK(r.exit_code == 1);
+  const std::string error = r.err.substr(std::min(r.err.size(), r.err.find("metric-frames generate: error: ")));
+  CHECK(lines(error) == 1);
+  CHECK(error.find("error: " + path + ": vertex 1: ") != std::string::npos);
+  CHECK(error.find("sqrt(det g) = 1e+462") != std::string::npos);
+  CHECK(error.find("nan") == std::string::npos);
+  const Run c = run("generate " + cube + " --metric-const '1e308 1e308 1e308' -o " + out);
+  CHECK(c.exit_code == 1);
+  CHECK(c.err.find("sqrt(det g) = 1e+462") != std::string::npos);
+  CHECK(!std::filesystem::exists(work / "big_metric_out" / "frames.fra"));
+  // Scaled to a hex size that brings it in range: a clean result, g / h^2 = 1e8 I.
+  const Run h = run("generate " + cube + " --metric " + path + " --hex-size 1e150 -o " + out);
+  INFO(h.err);
+  REQUIRE(h.exit_code == 0);
+  const std::string report = slurp(work / "big_metric_out" / "report.json");
+  CHECK(report.find("null") == std::string::npos);
+  CHECK(number_after(report, "expected_hexes") == Approx(8e12).epsilon(1e-12));
+}
