@@ -299,3 +299,11 @@ TEST_CASE("metric accepts 1e308 I and names the value of a tensor whose inverse 
   CHECK(t.err.find("vertex 1") != std::string::npos);
   CHECK(t.err.find("smallest eigenvalue 9.99989e-321") != std::string::npos);
 }
+
+TEST_CASE("metric writes a .sol whose file name has 250 characters", "[cli][metric]") {
+  const std::string out = (work / (std::string(246, 'g') + ".sol")).string();
+  const Run r = run("metric " + data_dir + "/cube_kuhn_2.mesh --expr '1, 0, 1, 0, 0, 1' -o " + out);
+  INFO(r.err);
+  CHECK(r.exit_code == 0);
+  CHECK(slurp(out).find("SolAtVertices\n27\n1 3\n") != std::string::npos);
+}

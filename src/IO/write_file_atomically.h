@@ -11,7 +11,8 @@
 
 namespace CGAL_ext::IO::internal {
 
-// Writes `path` through `body` into a temporary file next to it, then renames
+// Writes `path` through `body` into a temporary file next to it (named
+// ".mf-tmp-PID-N", short whatever the length of `path`'s name), then renames
 // it into place: a failed or interrupted write never leaves a half-written
 // `path` nor destroys what was there. Throws std::runtime_error naming `path`
 // (the temporary file is removed) if the file cannot be opened, written,
