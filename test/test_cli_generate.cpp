@@ -14,6 +14,8 @@
 #include <CGAL_ext/IO/Medit_mesh.h>
 #include <CGAL_ext/IO/Perm_file.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -368,6 +370,42 @@ TEST_CASE("generate meshes a built-in shape with Mesh_3", "[cli][generate]") {
       const double dot = (face.p[k] > 0 ? 1 : -1) * (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
       CHECK(dot > std::cos(M_PI / 4) / (0.35 * 0.35)); // gradients of length 1 / 0.35
     }
+}
+
+TEST_CASE("generate checks the output directory before any computation", "[cli][generate]") {
+  const std::string file = file_with("not_a_directory", "my notes\n");
+  for (const std::string& input : {cube, std::string("builtin:ball")}) {
+    INFO(input);
+    const Run r = run("generate " + input + " -o " + file);
+    CHECK(r.exit_code == 1);
+    CHECK(r.err == "metric-frames generate: error: " + file + ": the output directory exists and is not a directory\n");
+  }
+  CHECK(slurp(file) == "my notes\n");
+  const Run below = run("generate " + cube + " -o " + file + "/out");
+  CHECK(below.exit_code == 1);
+  CHECK(below.err == "metric-frames generate: error: " + file + "/out: cannot create the output directory: " + file +
+                         " is not a directory\n");
+  // /proc takes no new directories, not even from root.
+  const Run proc = run("generate " + cube + " -o /proc/cgal_ext_no_such_dir/out");
+  CHECK(proc.exit_code == 1);
+  CHECK(proc.err.find("metric-frames generate: error: /proc/cgal_ext_no_such_dir/out: cannot create the output "
+                      "directory: cannot create files in /proc: ") == 0);
+  CHECK(lines(proc.err) == 1);
+  if (::geteuid() != 0) { // root writes into read-only directories
+    const auto read_only = work / "read_only";
+    std::filesystem::create_directories(read_only);
+    std::filesystem::permissions(read_only, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+    const Run r = run("generate " + cube + " -o " + (read_only / "out").string());
+    std::filesystem::permissions(read_only, std::filesystem::perms::owner_all);
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find("cannot create files in " + read_only.string()) != std::string::npos);
+    CHECK(r.err.find("[stage]") == std::string::npos);
+  }
+  // The check leaves nothing behind when a later step fails.
+  const auto fresh = work / "fresh_parent";
+  std::filesystem::create_directories(fresh);
+  CHECK(run("generate " + (work / "nothing.mesh").string() + " -o " + (fresh / "out").string()).exit_code == 1);
+  CHECK(std::filesystem::is_empty(fresh));
 }
 
 TEST_CASE("generate with a metric of 1e308 I is a clear error naming the vertex and the value", "[cli][generate][extreme]") {

@@ -65,4 +65,29 @@ void write_file_atomically(const std::string& path, const std::function<void(std
   }
 }
 
+void check_output_directory(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw std::runtime_error(dir + ": the output directory exists and is not a directory");
+  // The directory, or the nearest existing ancestor it will be created in.
+  fs::path existing = dir;
+  while (!existing.empty() && !fs::exists(existing, ec)) existing = existing.parent_path();
+  if (existing.empty()) existing = ".";
+  if (!fs::is_directory(existing, ec))
+    throw std::runtime_error(dir + ": cannot create the output directory: " + existing.string() +
+                             " is not a directory");
+  // Whether files can be created there is best asked by creating one: as
+  // root, permissions say nothing, yet /proc or a read-only mount refuse.
+  std::string probe;
+  const int fd = create_temporary_file(existing, probe);
+  if (fd < 0) {
+    const std::string reason = std::string("cannot create files in ") + existing.string() + ": " + std::strerror(errno);
+    throw std::runtime_error(dir + (existing == fs::path(dir) ? ": " : ": cannot create the output directory: ") +
+                             reason);
+  }
+  ::close(fd);
+  std::remove(probe.c_str());
+}
+
 } // namespace CGAL_ext::IO::internal

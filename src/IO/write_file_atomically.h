@@ -19,6 +19,13 @@ namespace CGAL_ext::IO::internal {
 // closed or moved; an exception from `body` also removes it and propagates.
 void write_file_atomically(const std::string& path, const std::function<void(std::FILE*)>& body);
 
+// Checks that `dir` can take output files, so that a command can fail before
+// its computation rather than after: `dir` is a directory, or does not exist
+// and its nearest existing ancestor is a directory; and a file can be
+// created there (tried: a temporary file, removed at once). Creates nothing
+// that stays. Throws std::runtime_error naming `dir` and the reason.
+void check_output_directory(const std::string& dir);
+
 } // namespace CGAL_ext::IO::internal
 
 #endif

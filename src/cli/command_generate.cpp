@@ -342,6 +342,7 @@ int command_generate(const std::vector<std::string>& args) {
   // Nothing is written before every check passed; nothing the user gave is replaced.
   namespace fs = std::filesystem;
   std::error_code ec;
+  IO::internal::check_output_directory(out_dir); // before the computation, which can take long
   for (const char* name : output_names) {
     const fs::path p = fs::path(out_dir) / name;
     if (!fs::exists(p, ec)) continue;
