@@ -52,10 +52,10 @@ inline std::string slurp(const std::filesystem::path& p) {
   return ss.str();
 }
 
-/// Runs `metric-frames ARGS` through the shell, stdin from /dev/null.
-inline Run run(const std::string& args) {
+/// Runs `PREFIX metric-frames ARGS` through the shell, stdin from /dev/null.
+inline Run run_with_prefix(const std::string& prefix, const std::string& args) {
   std::filesystem::create_directories(work);
-  const std::string cmd = std::string(CGAL_EXT_CLI) + " " + args + " >" + (work / "out").string() + " 2>" +
+  const std::string cmd = prefix + CGAL_EXT_CLI + " " + args + " >" + (work / "out").string() + " 2>" +
                           (work / "err").string() + " </dev/null";
   const int status = std::system(cmd.c_str());
   Run r;
@@ -63,6 +63,15 @@ inline Run run(const std::string& args) {
   r.out = slurp(work / "out");
   r.err = slurp(work / "err");
   return r;
+}
+
+/// Runs `metric-frames ARGS` through the shell, stdin from /dev/null.
+inline Run run(const std::string& args) { return run_with_prefix("", args); }
+
+/// As run(), but with at most 1 GB of address space and `seconds` of time
+/// (then exit code 124): for inputs that a broken build would read forever.
+inline Run run_bounded(const std::string& args, int seconds = 30) {
+  return run_with_prefix("ulimit -v 1048576; timeout " + std::to_string(seconds) + " ", args);
 }
 
 /// Writes `content` to the file `name` of the scratch directory; returns its path.

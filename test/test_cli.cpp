@@ -4,6 +4,9 @@
 
 #include "cli_test_support.h"
 
+#include <sys/stat.h>
+
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
@@ -196,4 +199,111 @@ TEST_CASE("metric writes a .sol from formulas, and rejects bad formulas and non-
     CHECK(e.err.find(c.expected) != std::string::npos);
     CHECK(!std::filesystem::exists("x.sol"));
   }
+}
+
+TEST_CASE("a 10 MB token is echoed as its first 40 characters and its length", "[cli][bad-input]") {
+  const std::string cube = data_dir + "/cube_kuhn_2.mesh";
+  const std::string digits(10000000, '1');
+  const std::string quoted = "'" + std::string(40, '1') + "...' (10000000 characters)";
+  const std::string mesh =
+      file_with("long_number.mesh", "Dimension 3\nVertices\n4\n0 0 0 1\n1 0 " + digits + " 1\n0 1 0 1\n0 0 1 1\n");
+  const Run r = run("info " + mesh);
+  CHECK(r.exit_code == 1);
+  REQUIRE(r.err.size() < 1000); // else Catch would print 10 MB
+  CHECK(r.err ==
+        "metric-frames info: error: " + mesh + ":5: vertex 2: a coordinate " + quoted + " overflows a double\n");
+  const std::string segments = file_with("long_number.txt", "0 0 0 1 1 " + digits + "\n");
+  const Run w = run("walk " + cube + " --segments " + segments);
+  CHECK(w.exit_code == 1);
+  REQUIRE(w.err.size() < 1000);
+  CHECK(w.err.find("metric-frames walk: error: " + segments + ":1: " + quoted + " is not a finite number\n") !=
+        std::string::npos);
+}
+
+TEST_CASE("a NUL byte in an input file is shown escaped and the whole message reaches stderr", "[cli][bad-input]") {
+  const std::string cube = data_dir + "/cube_kuhn_2.mesh";
+  const std::string mesh = file_with("nul.mesh", std::string("Dimension 3\nVertices\n4\n0 0 0 1\n1 0 0") + '\0' +
+                                                     "zz 1\n0 1 0 1\n0 0 1 1\n");
+  const Run r = run("info " + mesh);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err == "metric-frames info: error: " + mesh + ":5: vertex 2: expected a coordinate, found '0\\x00zz'\n");
+  const std::string segments = file_with("nul.txt", std::string("0 0 0 1 1 1") + '\0' + "\n");
+  const Run w = run("walk " + cube + " --segments " + segments);
+  CHECK(w.exit_code == 1);
+  CHECK(w.err.find("metric-frames walk: error: " + segments + ":1: '1\\x00' is not a finite number\n") !=
+        std::string::npos);
+}
+
+TEST_CASE("a directory given as an input file is reported as a directory", "[cli][bad-input]") {
+  const std::string cube = data_dir + "/cube_kuhn_2.mesh";
+  const std::string dir = (work / "a_directory.mesh").string();
+  std::filesystem::create_directories(dir);
+  const std::string message = "error: " + dir + ": is a directory, not a file\n";
+  const Run i = run("info " + dir);
+  CHECK(i.exit_code == 1);
+  CHECK(i.err == "metric-frames info: " + message);
+  const Run w = run("walk " + cube + " --segments " + dir);
+  CHECK(w.exit_code == 1);
+  CHECK(w.err.find(message) != std::string::npos);
+  const Run t = run("transport " + cube + " --metric " + dir + " --pairs " + file_with("pairs.txt", "0 0 0 1 1 1\n"));
+  CHECK(t.exit_code == 1);
+  CHECK(t.err.find(message) != std::string::npos);
+  const std::string obj = (work / "a_directory.obj").string();
+  std::filesystem::create_directories(obj);
+  const Run g = run("generate " + obj + " -o " + (work / "directory_out").string());
+  CHECK(g.exit_code == 1);
+  CHECK(g.err.find("error: " + obj + ": is a directory, not a file\n") != std::string::npos);
+}
+
+TEST_CASE("an endless device or a FIFO as input is refused at once with exit status 1", "[cli][bad-input]") {
+  const std::string cube = data_dir + "/cube_kuhn_2.mesh";
+  const auto start = std::chrono::steady_clock::now();
+  const std::string message = "error: /dev/zero: is not a regular file (a device, a FIFO or a socket)\n";
+  const Run i = run_bounded("info /dev/zero");
+  CHECK(i.exit_code == 1);
+  CHECK(i.err == "metric-frames info: " + message);
+  const std::string pairs = file_with("pairs.txt", "0.5 0.5 0.5 1.5 1.5 1.5\n");
+  const Run t = run_bounded("transport " + cube + " --metric /dev/zero --pairs " + pairs);
+  CHECK(t.exit_code == 1);
+  CHECK(t.err.find(message) != std::string::npos);
+  const Run g = run_bounded("generate " + cube + " --metric /dev/zero -o " + (work / "zero_out").string());
+  CHECK(g.exit_code == 1);
+  CHECK(g.err.find(message) != std::string::npos);
+  const Run w = run_bounded("walk " + cube + " --segments /dev/zero");
+  CHECK(w.exit_code == 1);
+  CHECK(w.err.find(message) != std::string::npos);
+  // A FIFO without a writer: opening it would wait forever.
+  const std::string fifo = (work / "fifo.mesh").string();
+  std::filesystem::remove(fifo);
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  const Run f = run_bounded("info " + fifo, 10);
+  CHECK(f.exit_code == 1);
+  CHECK(f.err.find(fifo + ": is not a regular file") != std::string::npos);
+  CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 20);
+}
+
+TEST_CASE("metric accepts 1e308 I and names the value of a tensor whose inverse overflows", "[cli][metric]") {
+  const std::string cube = data_dir + "/cube_kuhn_2.mesh";
+  const std::string out = (work / "big.sol").string();
+  std::filesystem::remove(out);
+  const Run r = run("metric " + cube + " --expr '1e308, 0, 1e308, 0, 0, 1e308' -o " + out);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.err.find("sizes 1/sqrt(eigenvalue) in [1e-154, 1e-154]; max anisotropy 1;") != std::string::npos);
+  const std::string sol = slurp(out);
+  CHECK(sol.find("SolAtVertices\n27\n1 3\n1e+308 0 1e+308 0 0 1e+308\n") != std::string::npos);
+  CHECK(sol.find("nan") == std::string::npos);
+  CHECK(sol.find("inf") == std::string::npos);
+  const Run t = run("metric " + cube + " --expr '1e-320, 0, 1e-320, 0, 0, 1e-320' --force -o " + out);
+  CHECK(t.exit_code == 1);
+  CHECK(t.err.find("vertex 1") != std::string::npos);
+  CHECK(t.err.find("smallest eigenvalue 9.99989e-321") != std::string::npos);
+}
+
+TEST_CASE("metric writes a .sol whose file name has 250 characters", "[cli][metric]") {
+  const std::string out = (work / (std::string(246, 'g') + ".sol")).string();
+  const Run r = run("metric " + data_dir + "/cube_kuhn_2.mesh --expr '1, 0, 1, 0, 0, 1' -o " + out);
+  INFO(r.err);
+  CHECK(r.exit_code == 0);
+  CHECK(slurp(out).find("SolAtVertices\n27\n1 3\n") != std::string::npos);
 }

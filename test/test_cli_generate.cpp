@@ -14,6 +14,8 @@
 #include <CGAL_ext/IO/Medit_mesh.h>
 #include <CGAL_ext/IO/Perm_file.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -418,4 +420,66 @@ TEST_CASE("generate does not depend on the unit of length and refuses sizes beyo
     CHECK(r.err.find("between 1e-60 and 1e+60") != std::string::npos);
     CHECK(!std::filesystem::exists(work / "extreme_out" / "report.json"));
   }
+}
+
+TEST_CASE("generate checks the output directory before any computation", "[cli][generate]") {
+  const std::string file = file_with("not_a_directory", "my notes\n");
+  for (const std::string& input : {cube, std::string("builtin:ball")}) {
+    INFO(input);
+    const Run r = run("generate " + input + " -o " + file);
+    CHECK(r.exit_code == 1);
+    CHECK(r.err == "metric-frames generate: error: " + file + ": the output directory exists and is not a directory\n");
+  }
+  CHECK(slurp(file) == "my notes\n");
+  const Run below = run("generate " + cube + " -o " + file + "/out");
+  CHECK(below.exit_code == 1);
+  CHECK(below.err == "metric-frames generate: error: " + file + "/out: cannot create the output directory: " + file +
+                         " is not a directory\n");
+  // /proc takes no new directories, not even from root.
+  const Run proc = run("generate " + cube + " -o /proc/cgal_ext_no_such_dir/out");
+  CHECK(proc.exit_code == 1);
+  CHECK(proc.err.find("metric-frames generate: error: /proc/cgal_ext_no_such_dir/out: cannot create the output "
+                      "directory: cannot create files in /proc: ") == 0);
+  CHECK(lines(proc.err) == 1);
+  if (::geteuid() != 0) { // root writes into read-only directories
+    const auto read_only = work / "read_only";
+    std::filesystem::create_directories(read_only);
+    std::filesystem::permissions(read_only, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+    const Run r = run("generate " + cube + " -o " + (read_only / "out").string());
+    std::filesystem::permissions(read_only, std::filesystem::perms::owner_all);
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find("cannot create files in " + read_only.string()) != std::string::npos);
+    CHECK(r.err.find("[stage]") == std::string::npos);
+  }
+  // The check leaves nothing behind when a later step fails.
+  const auto fresh = work / "fresh_parent";
+  std::filesystem::create_directories(fresh);
+  CHECK(run("generate " + (work / "nothing.mesh").string() + " -o " + (fresh / "out").string()).exit_code == 1);
+  CHECK(std::filesystem::is_empty(fresh));
+}
+
+TEST_CASE("generate with a metric of 1e308 I is a clear error naming the vertex and the value", "[cli][generate][extreme]") {
+  std::string sol = "MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n27\n1 3\n";
+  for (int i = 0; i < 27; ++i) sol += "1e308 0 1e308 0 0 1e308\n";
+  const std::string path = file_with("big.sol", sol + "End\n");
+  const std::string out = (work / "big_metric_out").string();
+  // sqrt(det g) = 1e462: the metric volume, the expected number of hexahedra, overflows.
+  const Run r = run("generate " + cube + " --metric " + path + " -o " + out);
+  CHECK(r.exit_code == 1);
+  const std::string error = r.err.substr(std::min(r.err.size(), r.err.find("metric-frames generate: error: ")));
+  CHECK(lines(error) == 1);
+  CHECK(error.find("error: " + path + ": vertex 1: ") != std::string::npos);
+  CHECK(error.find("sqrt(det g) = 1e+462") != std::string::npos);
+  CHECK(error.find("nan") == std::string::npos);
+  const Run c = run("generate " + cube + " --metric-const '1e308 1e308 1e308' -o " + out);
+  CHECK(c.exit_code == 1);
+  CHECK(c.err.find("sqrt(det g) = 1e+462") != std::string::npos);
+  CHECK(!std::filesystem::exists(work / "big_metric_out" / "frames.fra"));
+  // Scaled to a hex size that brings it in range: a clean result, g / h^2 = 1e8 I.
+  const Run h = run("generate " + cube + " --metric " + path + " --hex-size 1e150 -o " + out);
+  INFO(h.err);
+  REQUIRE(h.exit_code == 0);
+  const std::string report = slurp(work / "big_metric_out" / "report.json");
+  CHECK(report.find("null") == std::string::npos);
+  CHECK(number_after(report, "expected_hexes") == Approx(8e12).epsilon(1e-12));
 }

@@ -4,6 +4,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <iterator>
 #include <fstream>
@@ -101,9 +103,10 @@ TEST_CASE("writing and reading back gives the same mesh", "[medit]") {
   CHECK(r.tetrahedron_references == m.tetrahedron_references);
   CHECK(r.triangles == m.triangles);
   CHECK(r.edges == m.edges);
-  // No temporary file is left next to it.
+  // No temporary file of this process is left next to it.
+  const std::string temporary = ".mf-tmp-" + std::to_string(::getpid()) + "-";
   for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(out).parent_path()))
-    CHECK(e.path().filename().string().rfind("roundtrip.mesh.tmp-write", 0) == std::string::npos);
+    CHECK(e.path().filename().string().rfind(temporary, 0) == std::string::npos);
   // A write that cannot happen names the path and leaves the old file as it was.
   const std::string before = [&] {
     std::ifstream in(out);
@@ -196,5 +199,49 @@ TEST_CASE("bad files give one clear error naming file and line", "[medit][bad-in
     const Input_error e = read_error("float.mesh", "Dimension 3\nVertices\n4\n0 0 0 1\n1 0 0 1\n0 1 0 1\n0 0 1 1\n"
                                                    "Tetrahedra\n1\n1 2.5 3 4 1\n");
     CHECK(e.problem() == "expected a vertex index, found '2.5'");
+  }
+}
+
+TEST_CASE("a 10 MB token is quoted by its first 40 characters and its length", "[medit][bad-input]") {
+  const std::string digits(10000000, '1');
+  const std::string quoted = "'" + std::string(40, '1') + "...' (10000000 characters)";
+  SECTION("a coordinate that overflows") {
+    const Input_error e = read_error("long_coordinate.mesh", "Dimension 3\nVertices\n4\n0 0 0 1\n1 0 " + digits +
+                                                                 " 1\n0 1 0 1\n0 0 1 1\n");
+    CHECK(e.line() == 5);
+    CHECK(e.element() == "vertex 2");
+    REQUIRE(std::string(e.what()).size() < 300); // else Catch would print 10 MB
+    CHECK(e.problem() == "a coordinate " + quoted + " overflows a double");
+  }
+  SECTION("an index that overflows") {
+    const Input_error e = read_error("long_index.mesh", "Dimension 3\nVertices\n4\n0 0 0 1\n1 0 0 1\n0 1 0 1\n0 0 1 1\n"
+                                                        "Tetrahedra\n1\n1 2 3 " + digits + " 1\n");
+    REQUIRE(std::string(e.what()).size() < 300);
+    CHECK(e.problem() == "a vertex index " + quoted + " is out of range");
+  }
+  SECTION("a garbage token") {
+    const Input_error e = read_error("long_garbage.mesh", "Dimension 3\n" + std::string(10000000, 'x') + "\n");
+    REQUIRE(std::string(e.what()).size() < 300);
+    CHECK(e.problem() == "unknown keyword '" + std::string(40, 'x') + "...' (10000000 characters)");
+  }
+}
+
+TEST_CASE("a NUL byte in a token is shown escaped and does not cut the message", "[medit][bad-input]") {
+  const Input_error e = read_error("nul.mesh", std::string("Dimension 3\nVertices\n4\n0 0 0 1\n1 0 0") + '\0' +
+                                                      "zz 1\n0 1 0 1\n0 0 1 1\n");
+  CHECK(e.line() == 5);
+  CHECK(e.problem() == "expected a coordinate, found '0\\x00zz'");
+  const std::string what = e.what(); // what() is a C string: cut at the first NUL
+  CHECK(what == e.file() + ":5: vertex 2: expected a coordinate, found '0\\x00zz'");
+}
+
+TEST_CASE("a directory is reported as a directory and not as an empty file", "[medit][bad-input]") {
+  const auto dir = std::filesystem::temp_directory_path() / "cgal_ext_test_medit_mesh" / "a_directory.mesh";
+  std::filesystem::create_directories(dir);
+  try {
+    read_medit_mesh(dir.string());
+    FAIL("no error");
+  } catch (const Input_error& e) {
+    CHECK(std::string(e.what()) == dir.string() + ": is a directory, not a file");
   }
 }

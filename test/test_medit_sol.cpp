@@ -194,3 +194,19 @@ TEST_CASE("bad values name the vertex and its line", "[medit_sol]") {
                "not positive");
   expect_error(write_file("hnan.sol", std::string(header) + "1\n1 1\nNaN\n"), 1, 6, "vertex 1", "not finite");
 }
+
+TEST_CASE("metrics near the ends of the double range: 1e308 I is read and tiny ones name their value", "[medit_sol]") {
+  // 1e308 I is SPD and representable: g + g^T overflows, g / 2 + g^T / 2 does not.
+  const std::vector<M3> big =
+      read_medit_sol(write_file("big.sol", std::string(header) + "1\n1 3\n1e308 0 1e308 0 0 1e308\n"), 1);
+  REQUIRE(big.size() == 1);
+  CHECK(big[0] == 1e308 * M3::Identity());
+  // The inverse of 1e-320 I, 1e320 I, overflows.
+  expect_error(write_file("tiny.sol", std::string(header) + "2\n1 3\n1 0 1 0 0 1\n1e-320 0 1e-320 0 0 1e-320\n"), 2,
+               7, "vertex 2", "smallest eigenvalue 9.99989e-321");
+  // g = I / h^2 overflows for h = 1e-160, and underflows for h = 1e160.
+  expect_error(write_file("hsmall.sol", std::string(header) + "2\n1 1\n0.1\n1e-160\n"), 2, 7, "vertex 2",
+               "size h = 9.9999999999999999e-161 is too small: g = I / h^2 overflows");
+  expect_error(write_file("hlarge.sol", std::string(header) + "2\n1 1\n1e160\n0.1\n"), 2, 6, "vertex 1",
+               "size h = 1e+160 is too large: g = I / h^2 underflows");
+}

@@ -133,6 +133,35 @@ TEST_CASE("sqrt_spd is the symmetric positive-definite root", "[metric]") {
             .norm() <= 1e-15);
 }
 
+TEST_CASE("check_metric_tensor and sqrt_spd work up to the ends of the double range", "[metric]") {
+  using CGAL_ext::check_metric_tensor;
+  using CGAL_ext::sqrt_spd;
+  // g + g^T overflows for 1e308 I: neither the check nor the root may.
+  const M3 big = 1e308 * M3::Identity();
+  CHECK(check_metric_tensor(big).empty());
+  const M3 A = sqrt_spd(big);
+  REQUIRE(A.allFinite());
+  CHECK((A - 1e154 * M3::Identity()).norm() <= 1e-15 * 1e154);
+  // A power of two 2^(2k) scales the root by exactly 2^k.
+  M3 g = M3::Identity();
+  g(1, 2) = g(2, 1) = 0.3;
+  CHECK(check_metric_tensor(std::ldexp(1.0, 1020) * g).empty());
+  CHECK(sqrt_spd(std::ldexp(1.0, 1020) * g) == std::ldexp(1.0, 510) * sqrt_spd(g));
+  CHECK(sqrt_spd(std::ldexp(1.0, -1020) * g) == std::ldexp(1.0, -510) * sqrt_spd(g));
+  // Indefinite with huge entries: the eigenvalue, not NaN.
+  CHECK(check_metric_tensor(V3(1e308, -1e308, 1e308).asDiagonal().toDenseMatrix()) ==
+        "the metric tensor is not positive definite (smallest eigenvalue -1e+308)");
+  // SPD, but the largest eigenvalue, 1.7e308 (1 + 2 * 0.9), is not a double.
+  M3 over = M3::Constant(0.9 * 1.7e308);
+  over.diagonal().setConstant(1.7e308);
+  const std::string too_large = check_metric_tensor(over);
+  CHECK(too_large.find("too large for double precision (largest eigenvalue 4.76e+308") != std::string::npos);
+  // The inverse of 1e-320 I overflows; 1e-300 I is fine.
+  CHECK(check_metric_tensor(1e-320 * M3::Identity())
+            .find("too small for double precision (smallest eigenvalue 9.99989e-321") != std::string::npos);
+  CHECK(check_metric_tensor(1e-300 * M3::Identity()).empty());
+}
+
 TEST_CASE("A is interpolated linearly and the curl matches MATH.md section 2", "[metric_field]") {
   Random r(22);
   const Mesh m = kuhn_grid(2);

@@ -83,7 +83,7 @@ std::string put_file(const std::string& name, const std::string& text) {
 std::size_t temporary_files_left() {
   std::size_t n = 0;
   for (const auto& e : fs::directory_iterator(fs::path(scratch("x")).parent_path()))
-    if (e.path().filename().string().find(".tmp-write-") != std::string::npos) ++n;
+    if (e.path().filename().string().rfind(".mf-tmp-", 0) == 0) ++n;
   return n;
 }
 
@@ -512,6 +512,20 @@ TEST_CASE(".fra: read_fra errors name the file and the line", "[fra]") {
   SECTION("empty and missing files") {
     expect_fra_error(put_file("empty.fra", " \n"), 0, "", "empty");
     expect_fra_error(scratch("missing.fra"), 0, "", "cannot open");
+  }
+}
+
+TEST_CASE(".fra: file names of 250 and 255 characters are written", "[fra]") {
+  // The temporary file must have a name within NAME_MAX (255) whatever the target's.
+  const Frames frames{{1, 0, 0, 0, 1, 0, 0, 0, 1}, {0.5, -0.25, 2, 3, 4, 5, -6, 7e-20, 1e300}};
+  for (std::size_t length : {250, 255}) {
+    INFO(length);
+    const std::string p = scratch(std::string(length - 4, 'f') + ".fra");
+    write_fra(p, frames);
+    CHECK(read_fra(p) == frames);
+    write_fra(p, {}); // replaces it
+    CHECK(read_fra(p).empty());
+    CHECK(temporary_files_left() == 0);
   }
 }
 

@@ -448,3 +448,42 @@ TEST_CASE("bad input: a clear Input_error", "[tetrahedralize][errors]") {
                  {"dodecahedron", "unknown", "ball", "torus", "box_with_hole", "blobby", "cube"});
   }
 }
+
+TEST_CASE("OBJ face indices 0 and out of range are reported with the file and the line", "[tetrahedralize][errors]") {
+  using CGAL_ext::tetrahedralize_surface;
+  // A tetrahedron with its third face (line 7) given as `bad`.
+  const auto tetrahedron = [](const std::string& bad) {
+    return "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\n" + bad + "\nf 2 3 4\n";
+  };
+  const auto expect = [&](const std::string& name, const std::string& bad, const std::string& problem) {
+    const std::string path = write_file(name, tetrahedron(bad));
+    try {
+      tetrahedralize_surface(path);
+      FAIL("no Input_error for " << bad);
+    } catch (const Input_error& e) {
+      INFO(e.what());
+      CHECK(e.file() == path);
+      CHECK(e.line() == 7);
+      CHECK(e.element() == "face 3");
+      CHECK(e.problem() == problem);
+    }
+  };
+  expect("zero.obj", "f 1 0 3", "vertex index 0 is not valid: OBJ indices start at 1 (negative ones count back)");
+  expect("zero_slashes.obj", "f 1/1/1 0/2/2 3/3/3",
+         "vertex index 0 is not valid: OBJ indices start at 1 (negative ones count back)");
+  expect("five.obj", "f 1 5 3", "vertex index 5 is out of range 1..4 (4 vertices in the file)");
+  expect("minus_seven.obj", "f 1 -7 3", "vertex index -7 is out of range -4..-1 (4 vertices before it)");
+  expect("word.obj", "f 1 two 3", "expected a vertex index, found 'two'");
+  expect("long.obj", "f 1 " + std::string(10000000, 'x') + " 3",
+         "expected a vertex index, found '" + std::string(40, 'x') + "...' (10000000 characters)");
+  // Relative indices in range still work: -1 is the last vertex read.
+  const Medit_mesh m = tetrahedralize_surface(write_file("relative.obj", tetrahedron("f -4 -1 -2")), with_size(0.3));
+  CHECK(!m.tetrahedra.empty());
+}
+
+TEST_CASE("a directory given as a surface file is reported as a directory", "[tetrahedralize][errors]") {
+  const fs::path dir = scratch() / "a_directory.off";
+  fs::create_directories(dir);
+  expect_error([&] { CGAL_ext::tetrahedralize_surface(dir.string()); },
+               {dir.string() + ": is a directory, not a file"});
+}

@@ -7,8 +7,10 @@
 /// The one exception type for bad user input (files, indices, values).
 
 #include <cstddef>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace CGAL_ext {
 
@@ -18,7 +20,9 @@ namespace CGAL_ext {
 ///
 /// `what()` is a complete, human-readable message of the form
 /// `FILE:LINE: element: problem` (parts that are unknown are left out),
-/// so that a command-line tool can print it as it is.
+/// so that a command-line tool can print it as it is. Control characters
+/// in it are written `\xHH`: `what()` is one line, and a NUL byte from a
+/// file cannot cut it short.
 class Input_error : public std::runtime_error {
 public:
   /// \param file the file the input came from (empty for in-memory input)
@@ -38,7 +42,41 @@ public:
   /// The problem alone, without location.
   const std::string& problem() const noexcept { return problem_; }
 
+  /// Longest part of a token that `quote()` shows.
+  static constexpr std::size_t quoted_token_length = 40;
+
+  /// A token of an input file as messages show it: in single quotes, with
+  /// bytes that are not printable ASCII written `\xHH`, and cut after
+  /// `quoted_token_length` characters, then followed by its length, so that
+  /// a 10 MB token gives a short message, e.g.
+  /// `'1111111111111111111111111111111111111111...' (10000000 characters)`.
+  /// \param token the token, as read
+  static std::string quote(std::string_view token) {
+    std::string s = "'" + escaped(token.substr(0, quoted_token_length), true) + "'";
+    if (token.size() > quoted_token_length)
+      s.insert(s.size() - 1, "...").append(" (" + std::to_string(token.size()) + " characters)");
+    return s;
+  }
+
 private:
+  // `s` with control characters, and with `non_ascii` every byte outside
+  // printable ASCII, written \xHH.
+  static std::string escaped(std::string_view s, bool non_ascii) {
+    std::string out;
+    out.reserve(s.size());
+    for (const char ch : s) {
+      const unsigned char c = static_cast<unsigned char>(ch);
+      if (c < 0x20 || c == 0x7f || (non_ascii && c > 0x7f)) {
+        char buf[5];
+        std::snprintf(buf, sizeof buf, "\\x%02x", c);
+        out += buf;
+      } else {
+        out += ch;
+      }
+    }
+    return out;
+  }
+
   static std::string compose(const std::string& file, std::size_t line, const std::string& element,
                              const std::string& problem) {
     std::string s;
@@ -46,7 +84,7 @@ private:
     if (line > 0) s += (s.empty() ? "line " : ":") + std::to_string(line);
     if (!s.empty()) s += ": ";
     if (!element.empty()) s += element + ": ";
-    return s + problem;
+    return escaped(s + problem, false); // UTF-8 file names stay readable
   }
 
   std::string file_;

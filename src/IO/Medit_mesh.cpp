@@ -107,9 +107,9 @@ Medit_mesh read_medit_mesh(const std::string& path) {
         if (Medit_tokenizer::keyword_equals(kw, candidate.name)) s = &candidate;
       if (!s) {
         const bool numeric = !kw.empty() && (std::isdigit(static_cast<unsigned char>(kw[0])) || kw[0] == '-' || kw[0] == '.');
-        tk.fail("", numeric ? "unexpected number '" + std::string(kw.substr(0, 40)) +
-                                  "' where a section keyword was expected (a count does not match its section?)"
-                            : "unknown keyword '" + std::string(kw.substr(0, 40)) + "'");
+        tk.fail("", numeric ? "unexpected number " + Input_error::quote(kw) +
+                                  " where a section keyword was expected (a count does not match its section?)"
+                            : "unknown keyword " + Input_error::quote(kw));
       }
       if (s->tokens == 0) { // a string value (Identifier, Geometry): one token
         tk.expect("a value");

@@ -96,10 +96,13 @@ std::vector<Eigen::Matrix3d> read_medit_sol(const std::string& path, std::size_t
           if (type == 1) {
             const double h = tk.read_double("a size");
             line = tk.line();
-            if (!(h > 0)) {
+            // A size too small or too large would pass as a tensor that is
+            // "not finite" or "zero" below: name the size instead.
+            const std::string problem = !(h > 0) ? "is not positive" : check_metric_size(h);
+            if (!problem.empty()) {
               char buf[64];
-              std::snprintf(buf, sizeof buf, "size h = %.17g is not positive", h);
-              throw Input_error(path, line, element, buf);
+              std::snprintf(buf, sizeof buf, "size h = %.17g ", h);
+              throw Input_error(path, line, element, buf + problem);
             }
             metrics[i] = Eigen::Matrix3d::Identity() / (h * h);
           } else {
@@ -124,9 +127,9 @@ std::vector<Eigen::Matrix3d> read_medit_sol(const std::string& path, std::size_t
     } else {
       const bool numeric =
           !kw.empty() && (std::isdigit(static_cast<unsigned char>(kw[0])) || kw[0] == '-' || kw[0] == '+' || kw[0] == '.');
-      tk.fail("", numeric ? "unexpected number '" + std::string(kw.substr(0, 40)) +
-                                "' where a keyword was expected (more records than the count says?)"
-                          : "unknown keyword '" + std::string(kw.substr(0, 40)) + "'");
+      tk.fail("", numeric ? "unexpected number " + Input_error::quote(kw) +
+                                " where a keyword was expected (more records than the count says?)"
+                          : "unknown keyword " + Input_error::quote(kw));
     }
   }
   if (!have_solution) throw Input_error(path, 0, "", "no SolAtVertices section");

@@ -2,6 +2,8 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #include <CGAL_ext/IO/Medit_tokenizer.h>
 
+#include "input_file.h"
+
 #include <cctype>
 #include <fstream>
 #include <iterator>
@@ -11,6 +13,7 @@ namespace CGAL_ext {
 namespace IO {
 
 Medit_tokenizer::Medit_tokenizer(std::string path) : path_(std::move(path)) {
+  internal::check_input_file(path_);
   std::ifstream in(path_, std::ios::binary);
   if (!in) throw Input_error(path_, 0, "", "cannot open the file for reading");
   std::ostringstream ss;
@@ -54,9 +57,10 @@ std::int64_t Medit_tokenizer::read_int(const char* what) {
   if (!s.empty() && s.front() == '+') s.remove_prefix(1);
   std::int64_t v = 0;
   const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (r.ec == std::errc::result_out_of_range) fail("", std::string(what) + " '" + std::string(t) + "' is out of range");
+  if (r.ec == std::errc::result_out_of_range)
+    fail("", std::string(what) + " " + Input_error::quote(t) + " is out of range");
   if (r.ec != std::errc() || r.ptr != s.data() + s.size())
-    fail("", std::string("expected ") + what + ", found '" + std::string(t.substr(0, 40)) + "'");
+    fail("", std::string("expected ") + what + ", found " + Input_error::quote(t));
   return v;
 }
 
@@ -67,10 +71,11 @@ double Medit_tokenizer::read_double(const char* what) {
   double v = 0;
   const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
   // from_chars reports overflow as out of range: that is an infinite value for us.
-  if (r.ec == std::errc::result_out_of_range) fail("", std::string(what) + " '" + std::string(t) + "' overflows a double");
+  if (r.ec == std::errc::result_out_of_range)
+    fail("", std::string(what) + " " + Input_error::quote(t) + " overflows a double");
   if (r.ec != std::errc() || r.ptr != s.data() + s.size())
-    fail("", std::string("expected ") + what + ", found '" + std::string(t.substr(0, 40)) + "'");
-  if (!std::isfinite(v)) fail("", std::string(what) + " is not finite ('" + std::string(t) + "')");
+    fail("", std::string("expected ") + what + ", found " + Input_error::quote(t));
+  if (!std::isfinite(v)) fail("", std::string(what) + " is not finite (" + Input_error::quote(t) + ")");
   return v;
 }
 

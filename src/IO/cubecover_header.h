@@ -22,8 +22,8 @@ inline void read_cubecover_header(Medit_tokenizer& tk, const std::string& word, 
                                   const std::string& kind) {
   const std::string_view found = tk.expect(("the word " + word).c_str());
   if (found != word)
-    tk.fail("", "expected '" + word + "', found '" + std::string(found.substr(0, 40)) + "': not a CubeCover " + kind +
-                    " (" + extension + ") file");
+    tk.fail("", "expected '" + word + "', found " + Input_error::quote(found) + ": not a CubeCover " + kind + " (" +
+                    extension + ") file");
   const std::int64_t version = tk.read_int(("the " + extension + " version").c_str());
   if (version != 1)
     tk.fail("", extension + " version " + std::to_string(version) + ": only version 1 is supported (as in CubeCover)");
@@ -33,8 +33,8 @@ inline void read_cubecover_header(Medit_tokenizer& tk, const std::string& word, 
 inline void expect_end_of_records(Medit_tokenizer& tk, std::size_t count, const std::string& records) {
   std::string_view extra;
   if (tk.next(extra))
-    tk.fail("", "unexpected '" + std::string(extra.substr(0, 40)) + "' after the last of the " + std::to_string(count) +
-                    " " + records + " (the count is too small?)");
+    tk.fail("", "unexpected " + Input_error::quote(extra) + " after the last of the " + std::to_string(count) + " " +
+                    records + " (the count is too small?)");
 }
 
 } // namespace CGAL_ext::IO::internal

@@ -27,6 +27,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -349,6 +350,7 @@ int command_generate(const std::vector<std::string>& args) {
   // Nothing is written before every check passed; nothing the user gave is replaced.
   namespace fs = std::filesystem;
   std::error_code ec;
+  IO::internal::check_output_directory(out_dir); // before the computation, which can take long
   for (const char* name : output_names) {
     const fs::path p = fs::path(out_dir) / name;
     if (!fs::exists(p, ec)) continue;
@@ -453,6 +455,31 @@ int command_generate(const std::vector<std::string>& args) {
   }
   field->precompute();
   const double expected_hexes = field->metric_volume();
+  if (!std::isfinite(expected_hexes)) {
+    // It would be Inf or NaN in the report: name the vertex where
+    // sqrt(det g) = det A is largest instead, computed without overflow.
+    std::size_t vertex = 0;
+    double largest = -std::numeric_limits<double>::infinity(), det = 0;
+    int exponent = 0;
+    for (Tr::Vertex_handle v : tr.finite_vertex_handles()) {
+      const Eigen::Matrix3d& A = field->sqrt_metric(v);
+      const int e = internal::metric_scale_exponent(A);
+      const double d = internal::times_power_of_two(A, -e).determinant();
+      const double log_det = std::log2(d) + 3 * e;
+      if (log_det > largest) {
+        largest = log_det;
+        det = d;
+        exponent = 3 * e;
+        vertex = v->info();
+      }
+    }
+    throw Input_error(sol_path ? *sol_path : formula ? "--metric-expr" : metric_const ? "--metric-const" : "", 0,
+                      "vertex " + std::to_string(vertex + 1),
+                      "sqrt(det g) = " + internal::power_of_two_text(det, exponent) +
+                          (hex.scaled ? " (g scaled to the hex size h = " + number(hex.h) + ")" : std::string()) +
+                          ": the expected number of hexahedra, int sqrt(det g) dV, overflows double precision; give a "
+                          "smaller metric or a larger --hex-size");
+  }
   stage("metric", lap(),
         metric_name + (hex.scaled ? "; hex size " + number(hex.h) + " (" + hex.rule + ")" : std::string()) +
             "; about " + number(std::round(expected_hexes)) + " hexahedra");

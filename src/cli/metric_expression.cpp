@@ -62,8 +62,8 @@ Eigen::Matrix3d Metric_expression::operator()(double x, double y, double z) cons
   const double* v = impl_->parser.Eval(n);
   Eigen::Matrix3d g;
   if (impl_->kind == Kind::size) {
-    if (!(v[0] > 0) || !std::isfinite(v[0]))
-      throw std::domain_error("the size h = " + format_number(v[0]) + " is not a positive finite number");
+    const std::string problem = check_metric_size(v[0]);
+    if (!problem.empty()) throw std::domain_error("the size h = " + format_number(v[0]) + " " + problem);
     g = Eigen::Matrix3d::Identity() / (v[0] * v[0]);
   } else {
     g << v[0], v[1], v[3], v[1], v[2], v[4], v[3], v[4], v[5];
@@ -89,7 +89,7 @@ std::vector<Eigen::Matrix3d> evaluate_metric(const Metric_expression& formula,
     }
     const std::string problem = check_metric_tensor(metrics[i]);
     if (!problem.empty()) throw std::runtime_error(where() + problem);
-    metrics[i] = 0.5 * (metrics[i] + metrics[i].transpose()).eval();
+    metrics[i] = (0.5 * metrics[i] + 0.5 * metrics[i].transpose()).eval(); // g + g^T overflows for 1e308
   }
   return metrics;
 }

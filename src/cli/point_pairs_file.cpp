@@ -1,6 +1,7 @@
 // Copyright (c) 2026 CGAL Metric Frames contributors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #include "point_pairs_file.h"
+#include "../IO/input_file.h"
 
 #include <CGAL_ext/Input_error.h>
 
@@ -16,6 +17,7 @@ std::vector<Point_pair> read_point_pairs(const std::string& path) {
   std::ifstream file;
   std::istream* in = &std::cin;
   if (path != "-") {
+    IO::internal::check_input_file(path);
     file.open(path);
     if (!file) throw Input_error(path, 0, "", "cannot open the file for reading");
     in = &file;
@@ -37,7 +39,7 @@ std::vector<Point_pair> read_point_pairs(const std::string& path) {
         if (tok.front() == '+') tok.remove_prefix(1);
         const auto r = std::from_chars(tok.data(), tok.data() + tok.size(), v[n]);
         if (r.ec != std::errc() || r.ptr != tok.data() + tok.size() || !std::isfinite(v[n]))
-          throw Input_error(path, number, "", "'" + std::string(tok.substr(0, 40)) + "' is not a finite number");
+          throw Input_error(path, number, "", Input_error::quote(tok) + " is not a finite number");
         ++n;
       }
       if (end == std::string_view::npos) break;

@@ -7,6 +7,8 @@
 // of the library that instantiates Mesh_3.
 #include <CGAL_ext/tetrahedralize.h>
 
+#include "../IO/input_file.h"
+
 // False positives inside Boost.Graph (instantiated by detect_features).
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
@@ -37,16 +39,19 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <chrono>
 #include <unistd.h>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
 #include <set>
 #include <sstream>
+#include <string_view>
 #include <unordered_map>
 #include <utility>
 
@@ -357,6 +362,58 @@ std::string lower_extension(const std::string& path) {
   return e;
 }
 
+// Checks the vertex indices of the faces of an OBJ file, naming the line.
+// CGAL's reader (5.5) turns an index 0 into the one after the last vertex,
+// and accepts that index: the error that follows named the wrong index and
+// no line.
+void check_obj_face_indices(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  struct Reference { // an index beyond the vertices read so far: allowed if defined further down
+    std::size_t line, face;
+    std::int64_t index;
+  };
+  std::vector<Reference> forward;
+  std::size_t vertices = 0, faces = 0;
+  std::string text;
+  for (std::size_t line = 1; std::getline(in, text); ++line) {
+    std::string_view rest(text);
+    const auto next_token = [&rest] {
+      const std::size_t begin = std::min(rest.size(), rest.find_first_not_of(" \t\r"));
+      const std::size_t end = std::min(rest.size(), rest.find_first_of(" \t\r", begin));
+      const std::string_view token = rest.substr(begin, end - begin);
+      rest.remove_prefix(end);
+      return token;
+    };
+    const std::string_view keyword = next_token();
+    if (keyword == "v") ++vertices;
+    if (keyword != "f") continue;
+    const std::string element = "face " + std::to_string(++faces);
+    for (std::string_view token = next_token(); !token.empty() && token[0] != '#'; token = next_token()) {
+      std::string_view digits = token.substr(0, token.find('/')); // v/vt/vn
+      if (!digits.empty() && digits[0] == '+') digits.remove_prefix(1);
+      std::int64_t index = 0;
+      const auto r = std::from_chars(digits.data(), digits.data() + digits.size(), index);
+      if (r.ec != std::errc() || r.ptr != digits.data() + digits.size() || digits.empty())
+        throw Input_error(path, line, element, "expected a vertex index, found " + Input_error::quote(token));
+      if (index == 0)
+        throw Input_error(path, line, element,
+                          "vertex index 0 is not valid: OBJ indices start at 1 (negative ones count back)");
+      if (index < 0 && std::uint64_t(-(index + 1)) >= vertices)
+        throw Input_error(path, line, element,
+                          "vertex index " + std::to_string(index) + " is out of range " +
+                              (vertices ? "-" + std::to_string(vertices) + "..-1 (" + std::to_string(vertices) +
+                                              " vertices before it)"
+                                        : std::string("(no vertex before it)")));
+      if (index > 0 && std::uint64_t(index) > vertices) forward.push_back({line, faces, index});
+    }
+  }
+  for (const Reference& r : forward)
+    if (std::uint64_t(r.index) > vertices)
+      throw Input_error(path, r.line, "face " + std::to_string(r.face),
+                        "vertex index " + std::to_string(r.index) + " is out of range 1.." + std::to_string(vertices) +
+                            " (" + std::to_string(vertices) + " vertices in the file)");
+}
+
 // Reads a surface file into a closed, outward oriented triangle mesh, or throws.
 // Appends the repairs made to `repairs`.
 Surface read_closed_surface(const std::string& path, std::vector<std::string>& repairs) {
@@ -365,10 +422,9 @@ Surface read_closed_surface(const std::string& path, std::vector<std::string>& r
     throw Input_error(path, 0, "",
                       (ext.empty() ? std::string("no file extension") : "unsupported extension '" + ext + "'") +
                           ": expected .off, .obj, .stl or .ply");
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw Input_error(path, 0, "", "cannot open the file for reading: it is a directory");
+  IO::internal::check_input_file(path);
   if (!std::ifstream(path, std::ios::binary)) throw Input_error(path, 0, "", "cannot open the file for reading");
+  if (ext == ".obj") check_obj_face_indices(path);
 
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> faces;

@@ -29,7 +29,8 @@ class Medit_tokenizer {
 public:
   /// Reads the whole file.
   /// \param path the file
-  /// \throws Input_error if the file cannot be opened or is empty
+  /// \throws Input_error if the file cannot be opened, is a directory or not
+  ///         a regular file (a device or a FIFO, checked before opening), or is empty
   explicit Medit_tokenizer(std::string path);
 
   /// The file name, for messages.
