@@ -264,6 +264,72 @@ TEST_CASE("same input and options give the same mesh, and another seed still a v
   CHECK(mesh_volume(e) == Approx(octahedron().volume()).epsilon(0.05));
 }
 
+TEST_CASE("Mesh_3 in rounds: progress after each round, and a valid deterministic mesh", "[tetrahedralize]") {
+  struct Call {
+    std::size_t vertices, expected;
+    double seconds;
+  };
+  const auto run = [](auto&& mesh, std::size_t round, std::vector<Call>& calls) {
+    Tetrahedralize_options o = with_size(0.08);
+    o.round_vertices = round;
+    o.progress = [&calls](std::size_t v, std::size_t e, double t) { calls.push_back({v, e, t}); };
+    return mesh(o);
+  };
+  SECTION("polyhedral domain with protected sharp edges") {
+    const Surface s = octahedron();
+    const std::string path = write_file("octahedron_rounds.off", s.off());
+    const auto mesh = [&](const Tetrahedralize_options& o) { return CGAL_ext::tetrahedralize_surface(path, o); };
+    std::vector<Call> one, rounds, again;
+    const Medit_mesh m1 = run(mesh, 0, one), mr = run(mesh, 400, rounds), ma = run(mesh, 400, again);
+    CHECK(one.empty()); // a small mesh: one call, no progress
+    REQUIRE(rounds.size() >= 2);
+    // The first round also holds the protection of the sharp edges (it has
+    // room for it); each next one stops at its cap, 400 vertices further.
+    CHECK(rounds[0].vertices > 400);
+    for (std::size_t i = 1; i < rounds.size(); ++i) {
+      CHECK(rounds[i].vertices == rounds[i - 1].vertices + 400);
+      CHECK(rounds[i].expected == rounds[0].expected);
+      CHECK(rounds[i].seconds >= rounds[i - 1].seconds);
+    }
+    CHECK(mr.vertices.size() > rounds.back().vertices);
+    CHECK(check_mesh(mr) == 2);
+    // The sharp edges stay protected across rounds: the volume is exact.
+    CHECK(mesh_volume(mr) == Approx(s.volume()).epsilon(1e-6));
+    CHECK(!mr.edges.empty());
+    CHECK(same(mr, ma));
+    CHECK(again.size() == rounds.size());
+    // About the mesh of one call.
+    CHECK(double(mr.tetrahedra.size()) == Approx(double(m1.tetrahedra.size())).epsilon(0.15));
+  }
+  SECTION("implicit domain") {
+    const auto mesh = [&](const Tetrahedralize_options& o) { return CGAL_ext::tetrahedralize_builtin("ball", o); };
+    std::vector<Call> rounds, again;
+    const Medit_mesh mr = run(mesh, 500, rounds), ma = run(mesh, 500, again);
+    REQUIRE(rounds.size() >= 2);
+    for (std::size_t i = 0; i < rounds.size(); ++i) CHECK(rounds[i].vertices == 500 * (i + 1));
+    CHECK(check_mesh(mr) == 2);
+    CHECK(mesh_volume(mr) == Approx(4 * pi / 3).epsilon(0.03));
+    CHECK(same(mr, ma));
+  }
+}
+
+TEST_CASE("the memory limit stops Mesh_3 where the estimate is too low", "[tetrahedralize][errors]") {
+  // A thin slab, 10 x 1 x 0.05: volume 0.5, so 5 * 0.5 / 0.5^3 = 20
+  // tetrahedra are expected, but its sharp edges and faces need hundreds.
+  Surface s = quad_cube();
+  for (auto& p : s.points) p = {p[0] * 5, p[1] * 0.5, p[2] * 0.025};
+  const std::string path = write_file("slab.off", s.off());
+  Tetrahedralize_options o = with_size(0.5);
+  // 3x the estimate: 10 vertices. The protection of the sharp edges stops
+  // there (it does not stop exactly at the cap: it is reported as it is).
+  o.memory_limit = 20 * CGAL_ext::bytes_per_tetrahedron * 3;
+  expect_error([&] { CGAL_ext::tetrahedralize_surface(path, o); },
+               {path, "meshing stopped at", "vertices (about", "the most that the memory limit of 9.6e-05 GB allows",
+                "about 20 tetrahedra were expected", "larger memory limit"});
+  o.memory_limit = -1;
+  CHECK(CGAL_ext::tetrahedralize_surface(path, o).vertices.size() > 10);
+}
+
 TEST_CASE("the automatic size gives a mesh of a sensible size", "[tetrahedralize]") {
   const Surface s = octahedron(1);
   const std::string path = write_file("octahedron_auto.off", s.off());
@@ -390,7 +456,8 @@ TEST_CASE("bad input: a clear Input_error", "[tetrahedralize][errors]") {
     expect_error([&] { tetrahedralize_surface(none); }, {"no file extension"});
   }
   SECTION("garbage and empty files") {
-    expect_error([&] { tetrahedralize_surface(write_file("garbage.off", "this is not OFF\n")); }, {"cannot read"});
+    expect_error([&] { tetrahedralize_surface(write_file("garbage.off", "this is not OFF\n")); },
+                 {"garbage.off:1: not an OFF file: expected 'OFF' or the counts, found 'this'"});
     expect_error([&] { tetrahedralize_surface(write_file("empty.off", "OFF\n0 0 0\n")); }, {"empty"});
   }
   SECTION("open surface") {
@@ -478,6 +545,44 @@ TEST_CASE("OBJ face indices 0 and out of range are reported with the file and th
          "expected a vertex index, found '" + std::string(40, 'x') + "...' (10000000 characters)");
   // Relative indices in range still work: -1 is the last vertex read.
   const Medit_mesh m = tetrahedralize_surface(write_file("relative.obj", tetrahedron("f -4 -1 -2")), with_size(0.3));
+  CHECK(!m.tetrahedra.empty());
+}
+
+TEST_CASE("OFF counts and faces are checked with the file and the line before CGAL's reader", "[tetrahedralize][errors]") {
+  using CGAL_ext::tetrahedralize_surface;
+  // A tetrahedron, with a comment line, its third face (line 10) given as `face`.
+  const auto tetrahedron = [](const std::string& counts, const std::string& face) {
+    return "OFF\n" + counts + "\n# vertices\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n" + face + "\n3 1 2 3\n";
+  };
+  const auto expect = [&](const std::string& name, const std::string& counts, const std::string& face,
+                          std::size_t line, const std::string& element, const std::string& problem) {
+    const std::string path = write_file(name, tetrahedron(counts, face));
+    try {
+      tetrahedralize_surface(path);
+      FAIL("no Input_error for " << counts << " / " << face);
+    } catch (const Input_error& e) {
+      INFO(e.what());
+      CHECK(e.file() == path);
+      CHECK(e.line() == line);
+      CHECK(e.element() == element);
+      CHECK(e.problem() == problem);
+    }
+  };
+  // Found by fuzz_surface: CGAL converts a face's vertex count -1, read as a
+  // double, to size_t (undefined behaviour).
+  expect("minus_one.off", "4 4 0", "-1 0 3 2", 10, "face 3",
+         "expected the number of its vertices (a non-negative integer), found '-1'");
+  expect("huge.off", "4 4 0", "1e30 0 3 2", 10, "face 3",
+         "expected the number of its vertices (a non-negative integer), found '1e30'");
+  expect("short.off", "4 4 0", "4 0 3 2", 10, "face 3", "4 vertex indices announced, 3 found");
+  expect("index.off", "4 4 0", "3 0 4 2", 10, "face 3", "vertex index '4' is not in 0..3 (4 vertices in the file)");
+  expect("negative_index.off", "4 4 0", "3 0 -1 2", 10, "face 3",
+         "vertex index '-1' is not in 0..3 (4 vertices in the file)");
+  expect("counts.off", "4 -4 0", "3 0 3 2", 2, "",
+         "expected the vertex and face counts (non-negative integers), found '4' '-4'");
+  // Colours after the indices, and comments, are still read.
+  const Medit_mesh m = tetrahedralize_surface(write_file("colours.off", tetrahedron("4 4 0", "3 0 3 2 255 0 0 # red")),
+                                              with_size(0.3));
   CHECK(!m.tetrahedra.empty());
 }
 

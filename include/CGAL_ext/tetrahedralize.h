@@ -12,6 +12,7 @@
 #include <CGAL_ext/Input_error.h>
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -52,12 +53,25 @@ struct Tetrahedralize_options {
   bool optimize = true;
   /// The memory, in bytes, that the meshing and what follows may use: a size
   /// whose estimated mesh would need more is refused before Mesh_3 starts,
-  /// with the estimate. 0 means the physical memory of this machine; a
+  /// with the estimate, and Mesh_3 stops with an error when its mesh
+  /// reaches the vertices this allows (`memory_limit / bytes_per_tetrahedron
+  /// / 6`: the limit holds where the estimate is wrong). 0 means the physical memory of this machine; a
   /// negative value means no limit. The estimate is
   /// `tetrahedra_per_unit_volume` tetrahedra per `size^3` of the domain's
   /// volume, and `bytes_per_tetrahedron` each (the peak of `metric-frames
   /// generate`, Mesh_3 included, measured on 10^4 to 1.3 10^6 tetrahedra).
   double memory_limit = 0;
+  /// Mesh_3 runs in rounds of this many vertices (Mesh_3's vertex cap,
+  /// then a resumed refinement), with a `progress` call after each. 0 means
+  /// automatic: one call for meshes expected to have fewer than 1.5 10^5
+  /// vertices (about 9 10^5 tetrahedra, seconds of meshing), rounds of an
+  /// eighth of the expected vertices beyond. Rounds change the mesh slightly
+  /// (each one rescans for bad elements) but not its determinism.
+  std::size_t round_vertices = 0;
+  /// Called after each round (see `round_vertices`): the vertices so far,
+  /// the vertices expected (the tetrahedra estimate over 6), and the seconds
+  /// since the call began.
+  std::function<void(std::size_t vertices, std::size_t expected_vertices, double seconds)> progress;
 };
 
 /// \ingroup PkgCGALExtMesh
@@ -127,8 +141,9 @@ struct Tetrahedralize_report {
 ///   (with the number of border edges), a self-intersecting surface, a
 ///   surface that does not bound a volume even after reorientation, a
 ///   negative or non-finite `size` or `facet_distance`, a `size` so small
-///   that the mesh would have more than 10^8 tetrahedra (estimated), and a
-///   meshing that produced no tetrahedra.
+///   that the estimated mesh exceeds `memory_limit`, a mesh that reaches the
+///   vertices `memory_limit` allows while meshing, and a meshing that
+///   produced no tetrahedra.
 IO::Medit_mesh tetrahedralize_surface(const std::string& path, const Tetrahedralize_options& options = {},
                                       Tetrahedralize_report* report = nullptr);
 
@@ -154,8 +169,9 @@ IO::Medit_mesh tetrahedralize_surface(const std::string& path, const Tetrahedral
 /// \returns the mesh
 /// \throws Input_error for an unknown name (the message lists the valid
 ///   names), a negative or non-finite `size` or `facet_distance`, a `size` so
-///   small that the mesh would have more than 10^8 tetrahedra (estimated),
-///   and a meshing that produced no tetrahedra.
+///   small that the estimated mesh exceeds `memory_limit`, a mesh that
+///   reaches the vertices `memory_limit` allows while meshing, and a meshing
+///   that produced no tetrahedra.
 IO::Medit_mesh tetrahedralize_builtin(const std::string& name, const Tetrahedralize_options& options = {},
                                       Tetrahedralize_report* report = nullptr);
 

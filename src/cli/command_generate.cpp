@@ -75,8 +75,9 @@ const char* generate_help =
     "                        the tetrahedra's circumradii; edges come out about\n"
     "                        1.2-1.35 h (default: bounding-box diagonal / 20)\n"
     "  --max-memory GB       refuse a --size whose estimated mesh would need more\n"
-    "                        (about 5 tets per size^3 of volume, 1.6 KB each;\n"
-    "                        default: this machine's memory; 0: no limit)\n"
+    "                        (about 5 tets per size^3 of volume, 1.6 KB each),\n"
+    "                        and stop Mesh_3 where its mesh reaches that (default:\n"
+    "                        this machine's memory; 0: no limit)\n"
     "  --smooth-surface      do not protect the surface's sharp edges (creases\n"
     "                        above 60 degrees) in Mesh_3: for organic models\n"
     "  --boundary-weight W   weight of the soft boundary term (default 100)\n"
@@ -311,6 +312,10 @@ int command_generate(const std::vector<std::string>& args) {
     const double gb = *m == "0" ? 0 : parse_positive(a, "--max-memory", *m);
     mesh_opt.memory_limit = gb > 0 ? gb * 1e9 : -1;
   }
+  mesh_opt.progress = [](std::size_t vertices, std::size_t expected, double seconds) {
+    std::fprintf(stderr, "[progress] Mesh_3: %zu vertices of about %zu expected, %.1f s\n", vertices, expected,
+                 seconds);
+  };
   Frame_field_options opt;
   if (const auto w = a.option("--boundary-weight")) opt.boundary_weight = parse_positive(a, "--boundary-weight", *w);
   opt.hard_boundary = !a.flag("--soft-boundary");

@@ -8,6 +8,7 @@
 #include <CGAL_ext/tetrahedralize.h>
 
 #include "../IO/input_file.h"
+#include "read_closed_surface.h"
 
 // False positives inside Boost.Graph (instantiated by detect_features).
 #if defined(__GNUC__) && !defined(__clang__)
@@ -25,21 +26,15 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/hilbert_sort.h>
 #include <CGAL/make_mesh_3.h>
+#include <CGAL/refine_mesh_3.h>
 #include <CGAL/property_map.h>
 
-#include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
-#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
-#include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
-#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
-#include <CGAL/Polygon_mesh_processing/self_intersections.h>
-#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <chrono>
 #include <unistd.h>
 #include <cctype>
@@ -51,8 +46,8 @@
 #include <map>
 #include <set>
 #include <sstream>
-#include <string_view>
 #include <unordered_map>
+#include <tuple>
 #include <utility>
 
 namespace CGAL_ext {
@@ -112,10 +107,13 @@ std::string number(double x) {
   return s.str();
 }
 
-// The size and facet distance actually used.
+// The size and facet distance actually used, the estimated number of
+// tetrahedra, and the memory limit in bytes (infinite for none).
 struct Sizes {
   double size;
   double facet_distance;
+  double estimated_tets;
+  double memory_limit;
 };
 
 // Checks the options and fills in the automatic values. `volume` is the
@@ -146,6 +144,8 @@ Sizes resolve_sizes(const Tetrahedralize_options& o, double bbox_diagonal, doubl
                           " tetrahedra would be made, needing about " + number(bytes / 1e9) + " GB, more than " +
                           (o.memory_limit > 0 ? "the memory limit of " : "the memory of this machine, ") +
                           number(limit / 1e9) + " GB (give a larger size, or a larger memory limit to go on)");
+  s.estimated_tets = estimate;
+  s.memory_limit = limit > 0 ? limit : HUGE_VAL;
   return s;
 }
 
@@ -306,18 +306,81 @@ void fill_report(Tetrahedralize_report* report, const IO::Medit_mesh& m, const S
 // on the load of the machine.
 constexpr double sliver_bound_degrees = 15;
 
-CGAL::parameters::internal::Perturb_options perturb_options(const Tetrahedralize_options& o) {
-  return o.optimize ? params::perturb(params::time_limit = 0, params::sliver_bound = sliver_bound_degrees)
-                    : params::no_perturb();
-}
-CGAL::parameters::internal::Exude_options exude_options(const Tetrahedralize_options& o) {
-  return o.optimize ? params::exude(params::time_limit = 0, params::sliver_bound = sliver_bound_degrees)
-                    : params::no_exude();
-}
-
 std::string optimize_text(const Tetrahedralize_options& o) {
   return o.optimize ? "perturbed and exuded (sliver bound " + number(sliver_bound_degrees) + " degrees)"
                     : std::string("not optimized");
+}
+
+// ---------------------------------------------------------------------------
+// Mesh_3 in rounds.
+
+// A Delaunay mesh has about 6 tetrahedra per vertex (5.5 to 6.5 measured on
+// the built-in shapes): caps and progress are counted in vertices, as Mesh_3's.
+constexpr double tets_per_vertex = 6;
+// Meshes expected to be smaller are made in one call, as make_mesh_3 alone:
+// they take seconds (1.3 10^5 vertices: about 8 s on this machine).
+constexpr double vertices_for_rounds = 1.5e5;
+// A round adds an eighth of the expected vertices (automatic rounds).
+constexpr double rounds_per_estimate = 8;
+
+// make_mesh_3, in rounds when the mesh is expected to be large: the first
+// round stops at a vertex cap (Mesh_3's `maximal_number_of_vertices`), the
+// next ones resume it with refine_mesh_3 (keeping the protecting balls of
+// the sharp edges), each adding `round_vertices` (by default an eighth of
+// the expected vertices), and `progress` reports after each. Resuming rescans the mesh for bad
+// elements, which costs little next to the insertions. The caps depend on
+// the estimate only, so the result is as deterministic as one call. Beyond
+// the vertices that the memory limit allows, meshing stops with an error
+// that gives the count reached: the limit holds even where the estimate is
+// wrong. `make(mesh_options)` calls make_mesh_3 with the domain's features
+// parameter, without optimizers, which run at the end as in make_mesh_3.
+//
+// The first round also holds Mesh_3's protection of the sharp edges, which
+// stops at the cap too: it is given room for `protection_vertices` (twice
+// the sharp edges' length over the size, an upper bound of the protecting
+// balls' centres, plus room for corners and initial points), so that only
+// the memory limit can interrupt it.
+template <class C3t3, class Domain, class Criteria, class Make>
+C3t3 mesh_3_in_rounds(const Domain& domain, const Criteria& criteria, Make make, const Tetrahedralize_options& o,
+                      const Sizes& s, std::size_t protection_vertices, const std::string& file,
+                      const std::string& element, Clock::time_point start) {
+  const double expected = s.estimated_tets / tets_per_vertex;
+  const double allowed = s.memory_limit / bytes_per_tetrahedron / tets_per_vertex;
+  const std::size_t hard_cap = std::isfinite(allowed) ? static_cast<std::size_t>(std::max(allowed, 1.0)) : 0;
+  const std::size_t step = o.round_vertices > 0                ? o.round_vertices
+                           : expected >= vertices_for_rounds ? static_cast<std::size_t>(expected / rounds_per_estimate)
+                                                             : 0;
+  const auto cap_for = [&](std::size_t cap) {
+    return cap == 0 ? hard_cap : hard_cap == 0 ? cap : std::min(cap, hard_cap);
+  };
+  std::size_t cap = cap_for(step == 0 ? 0 : step + protection_vertices);
+  CGAL::Mesh_error_code code = CGAL::CGAL_MESH_3_NO_ERROR;
+  C3t3 c3t3 = make(params::mesh_3_options(params::maximal_number_of_vertices = cap,
+                                          params::pointer_to_error_code = &code));
+  while (code == CGAL::CGAL_MESH_3_MAXIMAL_NUMBER_OF_VERTICES_REACHED) {
+    const std::size_t vertices = c3t3.triangulation().number_of_vertices();
+    if (hard_cap != 0 && vertices >= hard_cap)
+      throw Input_error(file, 0, element,
+                        "meshing stopped at " + std::to_string(vertices) + " vertices (about " +
+                            number(double(vertices) * tets_per_vertex) +
+                            " tetrahedra), the most that the memory limit of " + number(s.memory_limit / 1e9) +
+                            " GB allows; about " + number(s.estimated_tets) +
+                            " tetrahedra were expected (give a larger size, or a larger memory limit to go on)");
+    if (o.progress)
+      o.progress(vertices, static_cast<std::size_t>(expected),
+                 std::chrono::duration<double>(Clock::now() - start).count());
+    cap = cap_for(cap + step);
+    code = CGAL::CGAL_MESH_3_NO_ERROR;
+    CGAL::refine_mesh_3(c3t3, domain, criteria, params::no_reset_c3t3(), params::no_perturb(), params::no_exude(),
+                        params::no_lloyd(), params::no_odt(),
+                        params::mesh_3_options(params::maximal_number_of_vertices = cap,
+                                               params::pointer_to_error_code = &code));
+  }
+  if (o.optimize) {
+    CGAL::perturb_mesh_3(c3t3, domain, params::time_limit = 0, params::sliver_bound = sliver_bound_degrees);
+    CGAL::exude_mesh_3(c3t3, params::time_limit = 0, params::sliver_bound = sliver_bound_degrees);
+  }
+  return c3t3;
 }
 
 // ---------------------------------------------------------------------------
@@ -337,13 +400,28 @@ IO::Medit_mesh mesh_polyhedral(const Surface& surface, const Tetrahedralize_opti
   CGAL::Random rng(o.seed);
   Polyhedral_domain domain(surface, &rng);
   if (o.sharp_features) domain.detect_features(60);
+  // Room for the protection of the sharp edges in the first round of Mesh_3.
+  std::vector<std::tuple<Polyhedral_domain::Curve_index, std::pair<Point, Polyhedral_domain::Index>,
+                         std::pair<Point, Polyhedral_domain::Index>>>
+      curves;
+  double sharp_length = 0;
+  if (o.sharp_features) {
+    domain.get_curves(std::back_inserter(curves));
+    for (const auto& c : curves) sharp_length += CGAL::to_double(domain.curve_length(std::get<0>(c)));
+  }
+  const std::size_t protection_vertices = static_cast<std::size_t>(2 * sharp_length / s.size) + 1000;
 
   const CGAL::Mesh_criteria_3<Polyhedral_tr> criteria(
       params::edge_size = s.size, params::facet_angle = 25, params::facet_size = s.size,
       params::facet_distance = s.facet_distance, params::cell_radius_edge_ratio = 3, params::cell_size = s.size);
-  const Polyhedral_c3t3 c3t3 = CGAL::make_mesh_3<Polyhedral_c3t3>(
-      domain, criteria, o.sharp_features ? params::features(domain) : params::no_features(), params::no_lloyd(),
-      params::no_odt(), perturb_options(o), exude_options(o));
+  const Polyhedral_c3t3 c3t3 = mesh_3_in_rounds<Polyhedral_c3t3>(
+      domain, criteria,
+      [&](const auto& mesh_options) {
+        return CGAL::make_mesh_3<Polyhedral_c3t3>(
+            domain, criteria, o.sharp_features ? params::features(domain) : params::no_features(),
+            params::no_lloyd(), params::no_odt(), params::no_perturb(), params::no_exude(), mesh_options);
+      },
+      o, s, protection_vertices, file, element, start);
   if (c3t3.number_of_cells_in_complex() == 0)
     throw Input_error(file, 0, element,
                       "meshing produced no tetrahedra (is the size " + number(s.size) + " too large for the domain?)");
@@ -354,163 +432,6 @@ IO::Medit_mesh mesh_polyhedral(const Surface& surface, const Tetrahedralize_opti
                  "; " + optimize_text(o);
   fill_report(report, m, s, start, std::move(description));
   return m;
-}
-
-std::string lower_extension(const std::string& path) {
-  std::string e = std::filesystem::path(path).extension().string();
-  for (char& ch : e) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  return e;
-}
-
-// Checks the vertex indices of the faces of an OBJ file, naming the line.
-// CGAL's reader (5.5) turns an index 0 into the one after the last vertex,
-// and accepts that index: the error that follows named the wrong index and
-// no line.
-void check_obj_face_indices(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  struct Reference { // an index beyond the vertices read so far: allowed if defined further down
-    std::size_t line, face;
-    std::int64_t index;
-  };
-  std::vector<Reference> forward;
-  std::size_t vertices = 0, faces = 0;
-  std::string text;
-  for (std::size_t line = 1; std::getline(in, text); ++line) {
-    std::string_view rest(text);
-    const auto next_token = [&rest] {
-      const std::size_t begin = std::min(rest.size(), rest.find_first_not_of(" \t\r"));
-      const std::size_t end = std::min(rest.size(), rest.find_first_of(" \t\r", begin));
-      const std::string_view token = rest.substr(begin, end - begin);
-      rest.remove_prefix(end);
-      return token;
-    };
-    const std::string_view keyword = next_token();
-    if (keyword == "v") ++vertices;
-    if (keyword != "f") continue;
-    const std::string element = "face " + std::to_string(++faces);
-    for (std::string_view token = next_token(); !token.empty() && token[0] != '#'; token = next_token()) {
-      std::string_view digits = token.substr(0, token.find('/')); // v/vt/vn
-      if (!digits.empty() && digits[0] == '+') digits.remove_prefix(1);
-      std::int64_t index = 0;
-      const auto r = std::from_chars(digits.data(), digits.data() + digits.size(), index);
-      if (r.ec != std::errc() || r.ptr != digits.data() + digits.size() || digits.empty())
-        throw Input_error(path, line, element, "expected a vertex index, found " + Input_error::quote(token));
-      if (index == 0)
-        throw Input_error(path, line, element,
-                          "vertex index 0 is not valid: OBJ indices start at 1 (negative ones count back)");
-      if (index < 0 && std::uint64_t(-(index + 1)) >= vertices)
-        throw Input_error(path, line, element,
-                          "vertex index " + std::to_string(index) + " is out of range " +
-                              (vertices ? "-" + std::to_string(vertices) + "..-1 (" + std::to_string(vertices) +
-                                              " vertices before it)"
-                                        : std::string("(no vertex before it)")));
-      if (index > 0 && std::uint64_t(index) > vertices) forward.push_back({line, faces, index});
-    }
-  }
-  for (const Reference& r : forward)
-    if (std::uint64_t(r.index) > vertices)
-      throw Input_error(path, r.line, "face " + std::to_string(r.face),
-                        "vertex index " + std::to_string(r.index) + " is out of range 1.." + std::to_string(vertices) +
-                            " (" + std::to_string(vertices) + " vertices in the file)");
-}
-
-// Reads a surface file into a closed, outward oriented triangle mesh, or throws.
-// Appends the repairs made to `repairs`.
-Surface read_closed_surface(const std::string& path, std::vector<std::string>& repairs) {
-  const std::string ext = lower_extension(path);
-  if (ext != ".off" && ext != ".obj" && ext != ".stl" && ext != ".ply")
-    throw Input_error(path, 0, "",
-                      (ext.empty() ? std::string("no file extension") : "unsupported extension '" + ext + "'") +
-                          ": expected .off, .obj, .stl or .ply");
-  IO::internal::check_input_file(path);
-  if (!std::ifstream(path, std::ios::binary)) throw Input_error(path, 0, "", "cannot open the file for reading");
-  if (ext == ".obj") check_obj_face_indices(path);
-
-  std::vector<Point> points;
-  std::vector<std::vector<std::size_t>> faces;
-  bool read = false;
-  try {
-    read = CGAL::IO::read_polygon_soup(path, points, faces);
-  } catch (const std::exception& e) {
-    throw Input_error(path, 0, "", std::string("cannot read the file: ") + e.what());
-  }
-  std::string format = ext.substr(1);
-  for (char& ch : format) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
-  if (!read) throw Input_error(path, 0, "", "cannot read the file as " + format + " (malformed or truncated file?)");
-  if (faces.empty()) throw Input_error(path, 0, "", "the surface is empty (no faces)");
-  for (std::size_t i = 0; i < points.size(); ++i)
-    if (!std::isfinite(points[i].x()) || !std::isfinite(points[i].y()) || !std::isfinite(points[i].z()))
-      throw Input_error(path, 0, "vertex " + std::to_string(i + 1), "a coordinate is not finite");
-  for (std::size_t i = 0; i < faces.size(); ++i) {
-    if (faces[i].size() < 3)
-      throw Input_error(path, 0, "face " + std::to_string(i + 1),
-                        "has " + std::to_string(faces[i].size()) + " vertices (at least 3 needed)");
-    for (std::size_t v : faces[i])
-      if (v >= points.size())
-        throw Input_error(path, 0, "face " + std::to_string(i + 1),
-                          "vertex index " + std::to_string(v) + " is out of range (" +
-                              std::to_string(points.size()) + " vertices)");
-  }
-
-  if (!PMP::is_polygon_soup_a_polygon_mesh(faces)) {
-    // A soup (STL), duplicated points or faces, or inconsistent orientations.
-    const std::size_t points_before = points.size(), faces_before = faces.size();
-    PMP::repair_polygon_soup(points, faces);
-    const bool oriented = PMP::orient_polygon_soup(points, faces);
-    if (!oriented || faces.empty() || !PMP::is_polygon_soup_a_polygon_mesh(faces))
-      throw Input_error(path, 0, "",
-                        "the faces do not form a 2-manifold surface (an edge with more than two faces, a vertex "
-                        "where sheets meet, or a non-orientable surface), even after polygon soup repair");
-    repairs.push_back("polygon soup repaired and oriented consistently (" +
-                      std::to_string(points_before - std::min(points_before, points.size())) +
-                      " duplicate or unused points and " +
-                      std::to_string(faces_before - std::min(faces_before, faces.size())) +
-                      " degenerate or duplicate faces removed)");
-  }
-  Surface surface;
-  PMP::polygon_soup_to_polygon_mesh(points, faces, surface);
-  points.clear();
-  faces.clear();
-
-  if (!CGAL::is_triangle_mesh(surface)) {
-    std::size_t polygons = 0;
-    for (auto f : surface.faces())
-      if (surface.degree(f) != 3) ++polygons;
-    if (!PMP::triangulate_faces(surface))
-      throw Input_error(path, 0, "", "a face with more than 3 vertices could not be triangulated");
-    repairs.push_back(std::to_string(polygons) + " faces with more than 3 vertices triangulated");
-  }
-
-  std::size_t border_edges = 0;
-  for (auto h : surface.halfedges())
-    if (surface.is_border(h)) ++border_edges;
-  if (border_edges > 0)
-    throw Input_error(path, 0, "",
-                      "the surface is not closed (" + std::to_string(border_edges) +
-                          " border edges): it does not enclose a volume");
-  if (PMP::does_self_intersect(surface))
-    throw Input_error(path, 0, "",
-                      "the surface is self-intersecting (two triangles intersect, or a triangle is degenerate)");
-  // PMP::does_bound_a_volume() also accepts a surface that is inside-out
-  // everywhere (the volume then contains infinity): orient always, and count
-  // the faces that this reversed.
-  const auto successor_of_smallest = [&surface](Surface::Face_index f) {
-    auto h = surface.halfedge(f), best = h;
-    for (auto g = surface.next(h); g != h; g = surface.next(g))
-      if (surface.target(g) < surface.target(best)) best = g;
-    return surface.target(surface.next(best));
-  };
-  std::vector<Surface::Vertex_index> before(surface.number_of_faces());
-  for (auto f : surface.faces()) before[f.idx()] = successor_of_smallest(f);
-  PMP::orient_to_bound_a_volume(surface);
-  if (!PMP::does_bound_a_volume(surface))
-    throw Input_error(path, 0, "", "the surface does not bound a volume, even after reorientation");
-  std::size_t reversed = 0;
-  for (auto f : surface.faces()) reversed += before[f.idx()] != successor_of_smallest(f);
-  if (reversed > 0)
-    repairs.push_back(std::to_string(reversed) + " of " + std::to_string(surface.number_of_faces()) +
-                      " faces reversed to bound a volume (the surface, or some of its components, was inside-out)");
-  return surface;
 }
 
 // ---------------------------------------------------------------------------
@@ -665,8 +586,13 @@ IO::Medit_mesh mesh_implicit(const Implicit_shape& shape, const Tetrahedralize_o
   const CGAL::Mesh_criteria_3<Implicit_tr> criteria(params::facet_angle = 25, params::facet_size = s.size,
                                                     params::facet_distance = s.facet_distance,
                                                     params::cell_radius_edge_ratio = 3, params::cell_size = s.size);
-  const Implicit_c3t3 c3t3 = CGAL::make_mesh_3<Implicit_c3t3>(domain, criteria, params::no_lloyd(), params::no_odt(),
-                                                              perturb_options(o), exude_options(o));
+  const Implicit_c3t3 c3t3 = mesh_3_in_rounds<Implicit_c3t3>(
+      domain, criteria,
+      [&](const auto& mesh_options) {
+        return CGAL::make_mesh_3<Implicit_c3t3>(domain, criteria, params::no_lloyd(), params::no_odt(),
+                                                params::no_perturb(), params::no_exude(), mesh_options);
+      },
+      o, s, 0, "", element, start);
   if (c3t3.number_of_cells_in_complex() == 0)
     throw Input_error("", 0, element,
                       "meshing produced no tetrahedra (is the size " + number(s.size) + " too large for the shape?)");
@@ -681,7 +607,7 @@ IO::Medit_mesh tetrahedralize_surface(const std::string& path, const Tetrahedral
                                       Tetrahedralize_report* report) {
   const auto start = Clock::now();
   std::vector<std::string> repairs;
-  const Surface surface = read_closed_surface(path, repairs);
+  const Surface surface = internal::read_closed_surface(path, repairs);
   std::string description = "surface '" + path + "' (" + std::to_string(surface.number_of_vertices()) +
                             " vertices, " + std::to_string(surface.number_of_faces()) + " triangles)";
   for (std::size_t i = 0; i < repairs.size(); ++i) description += (i == 0 ? "; repaired: " : ", ") + repairs[i];
