@@ -4,7 +4,10 @@
 # (or sudo) on Debian bookworm.
 set -euo pipefail
 
-packages=(build-essential cmake libcgal-dev libeigen3-dev libboost-dev catch2 libtbb-dev libgmp-dev libmpfr-dev libmuparser-dev python3)
+# clang and libclang-rt-14-dev: the sanitized build and the libFuzzer
+# harnesses (scripts/test_sanitize.sh, doc/robustness.md).
+packages=(build-essential cmake libcgal-dev libeigen3-dev libboost-dev catch2 libtbb-dev libgmp-dev libmpfr-dev libmuparser-dev python3
+          clang libclang-rt-14-dev)
 
 missing=()
 for p in "${packages[@]}"; do

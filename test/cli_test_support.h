@@ -68,10 +68,26 @@ inline Run run_with_prefix(const std::string& prefix, const std::string& args) {
 /// Runs `metric-frames ARGS` through the shell, stdin from /dev/null.
 inline Run run(const std::string& args) { return run_with_prefix("", args); }
 
-/// As run(), but with at most 1 GB of address space and `seconds` of time
-/// (then exit code 124): for inputs that a broken build would read forever.
+#if defined(__SANITIZE_ADDRESS__)
+#define CGAL_EXT_TEST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define CGAL_EXT_TEST_ASAN 1
+#endif
+#endif
+
+/// As run(), but with at most 1 GB of memory and `seconds` of time (then
+/// exit code 124): for inputs that a broken build would read forever. The
+/// memory bound is the address space (`ulimit -v`), or, in the sanitized
+/// build, where AddressSanitizer reserves terabytes of shadow address space,
+/// its own limits on the resident set and on single allocations.
 inline Run run_bounded(const std::string& args, int seconds = 30) {
-  return run_with_prefix("ulimit -v 1048576; timeout " + std::to_string(seconds) + " ", args);
+#ifdef CGAL_EXT_TEST_ASAN
+  const std::string memory = "ASAN_OPTIONS=\"$ASAN_OPTIONS:hard_rss_limit_mb=1024:malloc_limit_mb=1024\" ";
+#else
+  const std::string memory = "ulimit -v 1048576; ";
+#endif
+  return run_with_prefix(memory + "timeout " + std::to_string(seconds) + " ", args);
 }
 
 /// Writes `content` to the file `name` of the scratch directory; returns its path.

@@ -278,6 +278,9 @@ inline std::vector<Test_segment> degenerate_segments(const Test_mesh& m, std::si
   for (const auto& p : m.points)
     for (int i = 0; i < 3; ++i) lo[i] = std::min(lo[i], p[i]), hi[i] = std::max(hi[i], p[i]);
   const double margin = 0.25 * std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  // Whether [a, b] converts to long (not at 1e300: converting it would be
+  // undefined behaviour, which UBSan reports).
+  const auto long_range = [](double a, double b) { return std::abs(a) < 0x1p62 && std::abs(b) < 0x1p62; };
 
   auto pick = [&](std::size_t n) { return static_cast<std::size_t>(internal::uniform_int(rng, 0, static_cast<long>(n) - 1)); };
   auto comb = [&](const std::vector<std::size_t>& ids, const std::vector<double>& w) {
@@ -315,14 +318,21 @@ inline std::vector<Test_segment> degenerate_segments(const Test_mesh& m, std::si
       kind = "lattice";
       P3 r;
       for (int i = 0; i < 3; ++i)
-        r[i] = 3.0 * internal::uniform_int(rng, static_cast<long>((lo[i] - margin) / 3), static_cast<long>((hi[i] + margin) / 3));
+        r[i] = long_range(lo[i] - margin, hi[i] + margin)
+                   ? 3.0 * internal::uniform_int(rng, static_cast<long>((lo[i] - margin) / 3),
+                                                 static_cast<long>((hi[i] + margin) / 3))
+                   : internal::uniform_real(rng, lo[i] - margin, hi[i] + margin); // every such double is an integer
       return r;
     }
     case 5: {
       kind = "outside";
       P3 r;
       const int axis = static_cast<int>(internal::uniform_int(rng, 0, 2));
-      for (int i = 0; i < 3; ++i) r[i] = 0.5 * internal::uniform_int(rng, static_cast<long>(2 * (lo[i] - margin)), static_cast<long>(2 * (hi[i] + margin)));
+      for (int i = 0; i < 3; ++i)
+        r[i] = long_range(2 * (lo[i] - margin), 2 * (hi[i] + margin))
+                   ? 0.5 * internal::uniform_int(rng, static_cast<long>(2 * (lo[i] - margin)),
+                                                 static_cast<long>(2 * (hi[i] + margin)))
+                   : internal::uniform_real(rng, lo[i] - margin, hi[i] + margin);
       r[axis] = internal::uniform_int(rng, 0, 1) ? hi[axis] + margin : lo[axis] - margin;
       return r;
     }
