@@ -44,7 +44,7 @@ for h in "${harnesses[@]}"; do
   log=$build/fuzz-findings/$h.log
   start=$(date +%s)
   # Seeds are read, never written: new inputs go to the corpus directory.
-  if ASAN_OPTIONS=detect_leaks=1 \
+  if ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
      "$build/fuzz/$h" -max_total_time="$seconds" -seed="${FUZZ_SEED:-0}" -timeout=30 -rss_limit_mb=2048 \
        -max_len="${max_len[$h]}" -dict="test/fuzz/${dict[$h]}" -print_final_stats=1 \
        -artifact_prefix="$findings/" "$corpus" "test/fuzz/seeds/${seeds[$h]}" >"$log" 2>&1; then

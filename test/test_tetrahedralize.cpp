@@ -543,6 +543,13 @@ TEST_CASE("OBJ face indices 0 and out of range are reported with the file and th
   expect("word.obj", "f 1 two 3", "expected a vertex index, found 'two'");
   expect("long.obj", "f 1 " + std::string(10000000, 'x') + " 3",
          "expected a vertex index, found '" + std::string(40, 'x') + "...' (10000000 characters)");
+  // Vertices used by no face (found by fuzz_surface: CGAL's orientation
+  // crashed on them) are removed, and the repair reported.
+  Tetrahedralize_report report;
+  const Medit_mesh unused = tetrahedralize_surface(
+      write_file("unused.obj", tetrahedron("f 1 4 3") + "v 0 0 0\nv 5 5 5\n"), with_size(0.3), &report);
+  CHECK(!unused.tetrahedra.empty());
+  CHECK(report.domain.find("2 vertices used by no face removed") != std::string::npos);
   // Relative indices in range still work: -1 is the last vertex read.
   const Medit_mesh m = tetrahedralize_surface(write_file("relative.obj", tetrahedron("f -4 -1 -2")), with_size(0.3));
   CHECK(!m.tetrahedra.empty());
@@ -583,6 +590,72 @@ TEST_CASE("OFF counts and faces are checked with the file and the line before CG
   // Colours after the indices, and comments, are still read.
   const Medit_mesh m = tetrahedralize_surface(write_file("colours.off", tetrahedron("4 4 0", "3 0 3 2 255 0 0 # red")),
                                               with_size(0.3));
+  CHECK(!m.tetrahedra.empty());
+}
+
+TEST_CASE("PLY headers are checked with the file and the line before CGAL's reader", "[tetrahedralize][errors]") {
+  using CGAL_ext::tetrahedralize_surface;
+  const std::string body = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  const std::string vertex = "element vertex 4\nproperty float x\nproperty float y\nproperty float z\n";
+  const std::string face = "element face 4\nproperty list uchar int vertex_indices\n";
+  const auto expect = [&](const std::string& name, const std::string& header, std::size_t line,
+                          const std::string& problem, bool then_body = true) {
+    const std::string path = write_file(name, then_body ? header + body : header);
+    try {
+      tetrahedralize_surface(path);
+      FAIL("no Input_error for " << header);
+    } catch (const Input_error& e) {
+      INFO(e.what());
+      CHECK(e.file() == path);
+      CHECK(e.line() == line);
+      CHECK(e.problem() == problem);
+    }
+  };
+  // Found by fuzz_surface: CGAL adds a property to the last element, which
+  // does not exist yet (undefined behaviour).
+  expect("property_first.ply", "ply\nformat ascii 1.0\nproperty float x\n" + vertex + face + "end_header\n", 3,
+         "a property before any element");
+  expect("count.ply", "ply\nformat ascii 1.0\nelement vertex -4\n", 3,
+         "expected 'element NAME COUNT', COUNT a non-negative integer");
+  expect("format.ply", "ply\nformat text 1.0\n" + vertex, 2,
+         "expected 'format ascii|binary_little_endian|binary_big_endian VERSION'");
+  expect("type.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty real x\n", 4,
+         "expected 'property TYPE NAME' or 'property list TYPE TYPE NAME'");
+  expect("keyword.ply", "ply\nformat ascii 1.0\nvertices 4\n", 3, "unknown PLY header keyword 'vertices'");
+  expect("magic.ply", "plx\nformat ascii 1.0\n", 1, "not a PLY file: the first line is not 'ply'");
+  expect("no_end.ply", "ply\nformat ascii 1.0\n" + vertex + face, 0, "the PLY header has no 'end_header' line", false);
+  expect("no_end_then_body.ply", "ply\nformat ascii 1.0\n" + vertex + face, 9, "unknown PLY header keyword '0'");
+  // Found by fuzz_surface: CGAL reads coordinates of another type through a
+  // null pointer (a crash in Release builds too).
+  expect("uint16.ply",
+         "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty uint16 z\n" + face +
+             "end_header\n",
+         6, "the coordinate z has type uint16: float or double expected");
+  expect("no_z.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n" + face +
+                         "end_header\n",
+         3, "the vertex element needs the properties x, y and z, of type float or double");
+  // Found by fuzz_surface: CGAL resizes a face's list to the count read
+  // before reading it (a 300-byte file asked for 7.6 GB).
+  expect("huge_list.ply", "ply\nformat ascii 1.0\n" + vertex + face + "end_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n" +
+                              "1900000000 0 2 1\n",
+         0, "the list 'vertex_indices' has '1900000000' entries, more than the rest of the file can hold, or not a count",
+         false);
+  expect("truncated.ply", "ply\nformat ascii 1.0\n" + vertex + face + "end_header\n0 0 0\n1 0 0\n0 1 0\n0 0\n",
+         0, "the file ends here (truncated file?)", false);
+  {
+    std::string binary = "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty double x\nproperty double "
+                         "y\nproperty double z\nelement face 1\nproperty list int int vertex_indices\nend_header\n";
+    binary += std::string(24, '\0');                      // the vertex (0, 0, 0)
+    binary += std::string("\x00\x00\x00\x72", 4);        // a count of 1912602624, little-endian
+    binary += std::string(12, '\0');
+    expect("huge_list_binary.ply", binary, 0,
+           "the list 'vertex_indices' has 1912602624 entries, more than the rest of the file can hold, or not a count",
+           false);
+  }
+  // A good header, with a comment, is read.
+  const Medit_mesh m = tetrahedralize_surface(
+      write_file("good.ply", "ply\nformat ascii 1.0\ncomment made by hand\n" + vertex + face + "end_header\n" + body),
+      with_size(0.3));
   CHECK(!m.tetrahedra.empty());
 }
 

@@ -10,6 +10,7 @@
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/repair.h>
 #include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
@@ -20,7 +21,10 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -172,6 +176,168 @@ void check_off_file(const std::string& path) {
   }
 }
 
+std::string number_text(double x) {
+  std::ostringstream out;
+  out.precision(17);
+  out << x;
+  return out.str();
+}
+
+// The size in bytes of a PLY scalar type, 0 if unknown.
+std::size_t ply_type_size(std::string_view type) {
+  if (type == "char" || type == "int8" || type == "uchar" || type == "uint8") return 1;
+  if (type == "short" || type == "int16" || type == "ushort" || type == "uint16") return 2;
+  if (type == "int" || type == "int32" || type == "uint" || type == "uint32" || type == "float" || type == "float32")
+    return 4;
+  if (type == "double" || type == "float64") return 8;
+  return 0;
+}
+
+// A binary PLY list count of `type`, as a double (exact for every type).
+double ply_binary_count(const unsigned char* b, std::string_view type, bool big_endian) {
+  const std::size_t n = ply_type_size(type);
+  unsigned char v[8] = {};
+  for (std::size_t i = 0; i < n; ++i) v[i] = b[big_endian ? n - 1 - i : i]; // to little-endian
+  const auto as = [&v](auto x) {
+    std::memcpy(&x, v, sizeof x);
+    return static_cast<double>(x);
+  };
+  if (type == "char" || type == "int8") return as(std::int8_t());
+  if (type == "uchar" || type == "uint8") return as(std::uint8_t());
+  if (type == "short" || type == "int16") return as(std::int16_t());
+  if (type == "ushort" || type == "uint16") return as(std::uint16_t());
+  if (type == "int" || type == "int32") return as(std::int32_t());
+  if (type == "uint" || type == "uint32") return as(std::uint32_t());
+  if (type == "float" || type == "float32") return as(float());
+  return as(double());
+}
+
+// Checks a PLY file before CGAL's reader, naming the line or the element.
+// CGAL's reader (5.5) adds a `property` to the last `element` read without
+// checking that there is one (undefined behaviour), reads vertex
+// coordinates of a type other than float or double through a null pointer
+// (a crash), and resizes a face's index list to the count the file gives
+// before reading it (a 300-byte file asked for 7.6 GB); all three were found
+// by fuzz_surface. Checked: the header (the `ply` line, the format, element
+// counts, properties after an element, with known types, x, y and z of the
+// vertices as float or double, `end_header`), then the body, walked without
+// storing it: every item present, and every list count a non-negative
+// integer whose entries the rest of the file can hold.
+void check_ply_file(const std::string& path) {
+  struct Property {
+    bool list;
+    std::string count_type, type, name;
+  };
+  struct Element {
+    std::string name;
+    std::uint64_t count;
+    std::vector<Property> properties;
+  };
+  std::vector<Element> elements;
+  std::string format;
+  std::ifstream in(path, std::ios::binary);
+  std::string text;
+  std::size_t line = 1;
+  const auto check_vertex_element = [&](std::size_t element_line) {
+    if (elements.empty() || (elements.back().name != "vertex" && elements.back().name != "vertices")) return;
+    int coordinates = 0;
+    for (const Property& p : elements.back().properties)
+      coordinates += !p.list && (p.name == "x" || p.name == "y" || p.name == "z");
+    if (coordinates != 3)
+      throw Input_error(path, element_line, "",
+                        "the vertex element needs the properties x, y and z, of type float or double");
+  };
+  std::size_t element_line = 0;
+  bool header_done = false;
+  for (; std::getline(in, text); ++line) {
+    const std::vector<std::string_view> t = line_tokens(text);
+    if (line == 1) {
+      if (t.size() != 1 || t[0] != "ply") throw Input_error(path, 1, "", "not a PLY file: the first line is not 'ply'");
+      continue;
+    }
+    if (t.empty() || t[0] == "comment" || t[0] == "obj_info") continue;
+    if (t[0] == "end_header") {
+      check_vertex_element(element_line);
+      header_done = true;
+      break;
+    }
+    if (t[0] == "format") {
+      if (t.size() != 3 || (t[1] != "ascii" && t[1] != "binary_little_endian" && t[1] != "binary_big_endian"))
+        throw Input_error(path, line, "", "expected 'format ascii|binary_little_endian|binary_big_endian VERSION'");
+      format = std::string(t[1]);
+    } else if (t[0] == "element") {
+      std::uint64_t count = 0;
+      if (t.size() != 3 || !parse_count(t[2], count))
+        throw Input_error(path, line, "", "expected 'element NAME COUNT', COUNT a non-negative integer");
+      check_vertex_element(element_line);
+      elements.push_back({std::string(t[1]), count, {}});
+      element_line = line;
+    } else if (t[0] == "property") {
+      if (elements.empty()) throw Input_error(path, line, "", "a property before any element");
+      const bool list = t.size() == 5 && t[1] == "list" && ply_type_size(t[2]) && ply_type_size(t[3]);
+      if (!list && (t.size() != 3 || !ply_type_size(t[1])))
+        throw Input_error(path, line, "", "expected 'property TYPE NAME' or 'property list TYPE TYPE NAME'");
+      Property p{list, list ? std::string(t[2]) : "", std::string(t[list ? 3 : 1]), std::string(t[list ? 4 : 2])};
+      const bool vertex = elements.back().name == "vertex" || elements.back().name == "vertices";
+      if (vertex && !list && (p.name == "x" || p.name == "y" || p.name == "z") && p.type != "float" &&
+          p.type != "float32" && p.type != "double" && p.type != "float64")
+        throw Input_error(path, line, "",
+                          "the coordinate " + p.name + " has type " + p.type + ": float or double expected");
+      elements.back().properties.push_back(std::move(p));
+    } else {
+      throw Input_error(path, line, "", "unknown PLY header keyword " + Input_error::quote(t[0]));
+    }
+  }
+  if (!header_done) throw Input_error(path, 0, "", "the PLY header has no 'end_header' line");
+  if (format.empty()) throw Input_error(path, 0, "", "the PLY header has no 'format' line");
+
+  // The body. Each item of an element with properties takes at least one
+  // byte or token, so the walk ends with the file.
+  const bool ascii = format == "ascii", big_endian = format == "binary_big_endian";
+  const std::streamoff body = in.tellg();
+  in.seekg(0, std::ios::end);
+  const std::streamoff end = in.tellg();
+  in.seekg(body);
+  std::string token;
+  unsigned char bytes[8];
+  for (const Element& e : elements) {
+    if (e.properties.empty()) continue;
+    for (std::uint64_t item = 1; item <= e.count; ++item) {
+      const auto where = [&] { return "element '" + e.name + "', item " + std::to_string(item); };
+      const auto truncated = [&] { return Input_error(path, 0, where(), "the file ends here (truncated file?)"); };
+      for (const Property& p : e.properties) {
+        if (!p.list) {
+          if (ascii ? !(in >> token) : !in.ignore(std::streamsize(ply_type_size(p.type))) ||
+                                           in.gcount() != std::streamsize(ply_type_size(p.type)))
+            throw truncated();
+          continue;
+        }
+        double count = 0;
+        if (ascii) {
+          if (!(in >> token)) throw truncated();
+          char* stop = nullptr;
+          count = std::strtod(token.c_str(), &stop);
+          if (*stop != '\0') count = -1;
+        } else {
+          const std::size_t n = ply_type_size(p.count_type);
+          if (!in.read(reinterpret_cast<char*>(bytes), std::streamsize(n))) throw truncated();
+          count = ply_binary_count(bytes, p.count_type, big_endian);
+        }
+        const double left = double(end - in.tellg());
+        const double entry = ascii ? 2 : double(ply_type_size(p.type)); // an ASCII entry: a digit and a space
+        if (!(count >= 0) || count != std::floor(count) || count * entry > left + 1)
+          throw Input_error(path, 0, where(),
+                            "the list '" + p.name + "' has " + (ascii ? Input_error::quote(token) : number_text(count)) +
+                                " entries, more than the rest of the file can hold, or not a count");
+        for (std::uint64_t k = 0; k < std::uint64_t(count); ++k)
+          if (ascii ? !(in >> token) : !in.ignore(std::streamsize(ply_type_size(p.type))) ||
+                                           in.gcount() != std::streamsize(ply_type_size(p.type)))
+            throw truncated();
+      }
+    }
+  }
+}
+
 } // namespace
 
 // Reads a surface file into a closed, outward oriented triangle mesh, or throws.
@@ -186,6 +352,7 @@ Surface read_closed_surface(const std::string& path, std::vector<std::string>& r
   if (!std::ifstream(path, std::ios::binary)) throw Input_error(path, 0, "", "cannot open the file for reading");
   if (ext == ".obj") check_obj_face_indices(path);
   if (ext == ".off") check_off_file(path);
+  if (ext == ".ply") check_ply_file(path);
 
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> faces;
@@ -232,6 +399,13 @@ Surface read_closed_surface(const std::string& path, std::vector<std::string>& r
   PMP::polygon_soup_to_polygon_mesh(points, faces, surface);
   points.clear();
   faces.clear();
+  // Points used by no face become isolated vertices, on which CGAL 5.5's
+  // orient_to_bound_a_volume() dereferences a null halfedge (found by
+  // fuzz_surface): removed, and reported.
+  if (const std::size_t isolated = PMP::remove_isolated_vertices(surface)) {
+    surface.collect_garbage();
+    repairs.push_back(std::to_string(isolated) + " vertices used by no face removed");
+  }
 
   if (!CGAL::is_triangle_mesh(surface)) {
     std::size_t polygons = 0;
