@@ -550,6 +550,15 @@ TEST_CASE("OBJ face indices 0 and out of range are reported with the file and th
       write_file("unused.obj", tetrahedron("f 1 4 3") + "v 0 0 0\nv 5 5 5\n"), with_size(0.3), &report);
   CHECK(!unused.tetrahedra.empty());
   CHECK(report.domain.find("2 vertices used by no face removed") != std::string::npos);
+  // Found by fuzz_surface: a polygon with a repeated point, or all its
+  // points on a line, made CGAL's triangulation bind a null reference.
+  const std::string fuzzed = std::string(CGAL_EXT_TEST_DATA_DIR) + "/fuzz/degenerate_polygon.obj";
+  expect_error([&] { tetrahedralize_surface(fuzzed); }, {fuzzed, "is not a convex planar polygon"});
+  expect_error([&] { tetrahedralize_surface(write_file("line.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\nf 1 2 3 4\nf 4 3 2 1\n")); },
+               {"line.obj", "a face with 4 vertices, from (0, 0, 0), is not a convex planar polygon", "triangulate it first"});
+  // A non-convex (L-shaped) hexagon is refused too.
+  expect_error([&] { tetrahedralize_surface(write_file("l.obj", "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nv 0 0 1\nf 1 2 3 4 5 6\nf 1 7 2\n")); },
+               {"l.obj", "a face with 6 vertices, from (0, 0, 0), is not a convex planar polygon"});
   // Relative indices in range still work: -1 is the last vertex read.
   const Medit_mesh m = tetrahedralize_surface(write_file("relative.obj", tetrahedron("f -4 -1 -2")), with_size(0.3));
   CHECK(!m.tetrahedra.empty());
@@ -587,10 +596,30 @@ TEST_CASE("OFF counts and faces are checked with the file and the line before CG
          "vertex index '-1' is not in 0..3 (4 vertices in the file)");
   expect("counts.off", "4 -4 0", "3 0 3 2", 2, "",
          "expected the vertex and face counts (non-negative integers), found '4' '-4'");
-  // Colours after the indices, and comments, are still read.
+  expect("short_vertex.off", "4 4 0\n0 0", "3 0 3 2", 3, "vertex 1", "3 coordinates expected, 2 found");
+  expect("word_vertex.off", "4 4 0\n0 zero 0", "3 0 3 2", 3, "vertex 1", "expected a coordinate, found 'zero'");
+  expect("nan_vertex.off", "4 4 0\n0 nan 0", "3 0 3 2", 3, "vertex 1", "a coordinate is not finite");
+  // Colours after the indices, and comments, are still read; colours out of
+  // range (undefined behaviour in CGAL's reader, found by fuzz_surface) are
+  // ignored, as all colours are.
   const Medit_mesh m = tetrahedralize_surface(write_file("colours.off", tetrahedron("4 4 0", "3 0 3 2 255 0 0 # red")),
                                               with_size(0.3));
   CHECK(!m.tetrahedra.empty());
+  const Medit_mesh c = tetrahedralize_surface(
+      write_file("coff.off", "COFF\n4 4 0\n0 0 0 1e10 -1 7\n1 0 0 1 1 1\n0 1 0 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2 "
+                             "9999 1\n3 1 2 3\n"),
+      with_size(0.3));
+  CHECK(!c.tetrahedra.empty());
+  // Homogeneous coordinates: the same tetrahedron, scaled by w = 2.
+  const Medit_mesh h = tetrahedralize_surface(
+      write_file("homogeneous.off", "4OFF\n4 4 0\n0 0 0 2\n2 0 0 2\n0 2 0 2\n0 0 2 2\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 "
+                                    "2 3\n"),
+      with_size(0.3));
+  CHECK(mesh_volume(h) == Approx(1.0 / 6).epsilon(1e-9));
+  expect_error([&] { tetrahedralize_surface(write_file("binary.off", "OFF BINARY\n\x62\x6c\x00\x20")); },
+               {"binary.off:1: binary OFF is not supported", "write ASCII OFF, binary STL or binary PLY"});
+  expect_error([&] { tetrahedralize_surface(write_file("n.off", "nOFF\n3\n4 4 0\n")); },
+               {"n.off:1: an OFF file of another dimension (nOFF) is not supported"});
 }
 
 TEST_CASE("PLY headers are checked with the file and the line before CGAL's reader", "[tetrahedralize][errors]") {
@@ -623,6 +652,9 @@ TEST_CASE("PLY headers are checked with the file and the line before CGAL's read
          "expected 'property TYPE NAME' or 'property list TYPE TYPE NAME'");
   expect("keyword.ply", "ply\nformat ascii 1.0\nvertices 4\n", 3, "unknown PLY header keyword 'vertices'");
   expect("magic.ply", "plx\nformat ascii 1.0\n", 1, "not a PLY file: the first line is not 'ply'");
+  // Found by fuzz_surface: '#' starts no comment in a PLY header; CGAL read
+  // on past `end_header#0` into a property before any element.
+  expect("hash.ply", "ply\nformat ascii 1.0\nend_header#0\n", 3, "unknown PLY header keyword 'end_header#0'", false);
   expect("no_end.ply", "ply\nformat ascii 1.0\n" + vertex + face, 0, "the PLY header has no 'end_header' line", false);
   expect("no_end_then_body.ply", "ply\nformat ascii 1.0\n" + vertex + face, 9, "unknown PLY header keyword '0'");
   // Found by fuzz_surface: CGAL reads coordinates of another type through a

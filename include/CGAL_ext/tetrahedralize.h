@@ -65,7 +65,7 @@ struct Tetrahedralize_options {
   /// then a resumed refinement), with a `progress` call after each. 0 means
   /// automatic: one call for meshes expected to have fewer than 1.5 10^5
   /// vertices (about 9 10^5 tetrahedra, seconds of meshing), rounds of an
-  /// eighth of the expected vertices beyond. Rounds change the mesh slightly
+  /// quarter of the expected vertices beyond. Rounds change the mesh slightly
   /// (each one rescans for bad elements) but not its determinism.
   std::size_t round_vertices = 0;
   /// Called after each round (see `round_vertices`): the vertices so far,

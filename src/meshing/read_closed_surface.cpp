@@ -13,7 +13,6 @@
 #include <CGAL/Polygon_mesh_processing/repair.h>
 #include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
-#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 
 #include <algorithm>
 #include <cctype>
@@ -44,9 +43,11 @@ std::string lower_extension(const std::string& path) {
   return e;
 }
 
-// The whitespace-separated tokens of a line, up to a `#` comment.
-std::vector<std::string_view> line_tokens(std::string_view rest) {
-  rest = rest.substr(0, rest.find('#'));
+// The whitespace-separated tokens of a line, up to a `#` comment if
+// `comments` (OFF, OBJ; a PLY header has no such comments: CGAL reads
+// `end_header#` as another keyword).
+std::vector<std::string_view> line_tokens(std::string_view rest, bool comments = true) {
+  if (comments) rest = rest.substr(0, rest.find('#'));
   std::vector<std::string_view> tokens;
   for (;;) {
     const std::size_t begin = rest.find_first_not_of(" \t\r\f\v");
@@ -110,14 +111,18 @@ bool parse_count(std::string_view token, std::uint64_t& value) {
   return !token.empty() && r.ec == std::errc() && r.ptr == token.data() + token.size();
 }
 
-// Checks the counts and the faces of an ASCII OFF file before CGAL's reader,
-// naming the line. CGAL's reader (5.5) converts the vertex count of a face,
-// read as a double, to size_t: a negative or huge count is undefined
-// behaviour (found by fuzz_surface), and a face with fewer indices than its
-// count or an index out of range was reported without a line. Lines are read
-// as CGAL reads them: one vertex or face per line, `#` starting a comment.
-// Binary and non-3D files (`OFF BINARY`, `4OFF`, `nOFF`) are left to CGAL.
-void check_off_file(const std::string& path) {
+// Reads an ASCII OFF file into a polygon soup, naming the line of any
+// defect; a binary file (`OFF BINARY`) is refused.
+// Our own reader, because CGAL's (5.5) has undefined behaviour on bad
+// files, all found by fuzz_surface: it converts a face's vertex count `-1`,
+// read as a double, to size_t; it reads colour entries past the numbers of
+// a short line; it converts colours out of 0..255 to unsigned char. Lines
+// are read as CGAL reads them, one vertex or face per line, `#` starting a
+// comment; the header may be OFF, COFF, NOFF, CNOFF, STOFF and the like
+// (what follows the coordinates and the indices, colours, normals, texture
+// coordinates, is ignored), or 4OFF (homogeneous: x/w, y/w, z/w).
+void read_ascii_off(const std::string& path, std::vector<Point>& points,
+                    std::vector<std::vector<std::size_t>>& faces_out) {
   std::ifstream in(path, std::ios::binary);
   std::string text;
   std::size_t line = 0;
@@ -131,30 +136,60 @@ void check_off_file(const std::string& path) {
     }
     return false;
   };
-  if (!next_line()) return; // empty: CGAL's reader fails, and says so below
+  const auto truncated = [&](const std::string& what) {
+    return Input_error(path, line, "", "the file ends before " + what + " (truncated file?)");
+  };
+  if (!next_line()) throw Input_error(path, 0, "", "the file is empty");
   std::size_t first = 0;
+  bool homogeneous = false;
   const std::string_view keyword = tokens[0];
   if (keyword.size() >= 3 && keyword.substr(keyword.size() - 3) == "OFF") {
-    if (keyword.find('4') != std::string_view::npos || keyword[0] == 'n') return;
     for (std::string_view t : tokens)
-      if (t == "BINARY") return;
+      if (t == "BINARY")
+        throw Input_error(path, line, "",
+                          "binary OFF is not supported (CGAL 5.5's reader overflows on bad binary headers, found by "
+                          "fuzz_surface): write ASCII OFF, binary STL or binary PLY");
+    if (keyword[0] == 'n' || keyword.find("nOFF") != std::string_view::npos)
+      throw Input_error(path, line, "", "an OFF file of another dimension (nOFF) is not supported");
+    homogeneous = keyword.find('4') != std::string_view::npos;
     first = 1;
     if (tokens.size() == 1) { // the counts on the next line
-      if (!next_line()) throw Input_error(path, line, "", "the vertex and face counts are missing");
+      if (!next_line()) throw truncated("the vertex and face counts");
       first = 0;
     }
   } else if (std::uint64_t count = 0; !parse_count(keyword, count)) {
-    throw Input_error(path, line, "", "not an OFF file: expected 'OFF' or the counts, found " + Input_error::quote(keyword));
+    throw Input_error(path, line, "",
+                      "not an OFF file: expected 'OFF' or the counts, found " + Input_error::quote(keyword));
   }
   std::uint64_t vertices = 0, faces = 0;
   if (tokens.size() < first + 2 || !parse_count(tokens[first], vertices) || !parse_count(tokens[first + 1], faces))
     throw Input_error(path, line, "",
                       "expected the vertex and face counts (non-negative integers), found " +
-                          Input_error::quote(tokens[first]) + (tokens.size() > first + 1 ? " " + Input_error::quote(tokens[first + 1]) : ""));
-  for (std::uint64_t v = 0; v < vertices; ++v)
-    if (!next_line()) return; // truncated: CGAL's reader fails
+                          Input_error::quote(tokens[first]) +
+                          (tokens.size() > first + 1 ? " " + Input_error::quote(tokens[first + 1]) : ""));
+  const std::size_t coordinates = homogeneous ? 4 : 3;
+  for (std::uint64_t v = 1; v <= vertices; ++v) {
+    if (!next_line()) throw truncated("vertex " + std::to_string(v));
+    const std::string element = "vertex " + std::to_string(v);
+    double x[4] = {0, 0, 0, 1};
+    for (std::size_t k = 0; k < coordinates; ++k) {
+      if (k >= tokens.size())
+        throw Input_error(path, line, element,
+                          std::to_string(coordinates) + " coordinates expected, " + std::to_string(tokens.size()) +
+                              " found");
+      const std::string token(tokens[k]);
+      char* stop = nullptr;
+      x[k] = std::strtod(token.c_str(), &stop);
+      if (*stop != '\0') throw Input_error(path, line, element, "expected a coordinate, found " + Input_error::quote(token));
+      if (!std::isfinite(x[k])) throw Input_error(path, line, element, "a coordinate is not finite");
+    }
+    if (homogeneous && x[3] == 0) throw Input_error(path, line, element, "the homogeneous coordinate w is 0");
+    points.emplace_back(x[0] / x[3], x[1] / x[3], x[2] / x[3]);
+    if (!std::isfinite(points.back().x()) || !std::isfinite(points.back().y()) || !std::isfinite(points.back().z()))
+      throw Input_error(path, line, element, "a coordinate divided by w is not finite");
+  }
   for (std::uint64_t f = 1; f <= faces; ++f) {
-    if (!next_line()) return;
+    if (!next_line()) throw truncated("face " + std::to_string(f));
     const std::string element = "face " + std::to_string(f);
     std::uint64_t count = 0;
     if (!parse_count(tokens[0], count))
@@ -165,6 +200,7 @@ void check_off_file(const std::string& path) {
       throw Input_error(path, line, element,
                         std::to_string(count) + " vertex indices announced, " + std::to_string(tokens.size() - 1) +
                             " found");
+    std::vector<std::size_t> face;
     for (std::uint64_t k = 1; k <= count; ++k) {
       std::uint64_t index = 0;
       if (!parse_count(tokens[k], index) || index >= vertices)
@@ -172,7 +208,9 @@ void check_off_file(const std::string& path) {
                           "vertex index " + Input_error::quote(tokens[k]) + " is not in 0.." +
                               (vertices ? std::to_string(vertices - 1) : std::string("-1")) + " (" +
                               std::to_string(vertices) + " vertices in the file)");
+      face.push_back(static_cast<std::size_t>(index));
     }
+    faces_out.push_back(std::move(face));
   }
 }
 
@@ -250,7 +288,7 @@ void check_ply_file(const std::string& path) {
   std::size_t element_line = 0;
   bool header_done = false;
   for (; std::getline(in, text); ++line) {
-    const std::vector<std::string_view> t = line_tokens(text);
+    const std::vector<std::string_view> t = line_tokens(text, false);
     if (line == 1) {
       if (t.size() != 1 || t[0] != "ply") throw Input_error(path, 1, "", "not a PLY file: the first line is not 'ply'");
       continue;
@@ -351,14 +389,20 @@ Surface read_closed_surface(const std::string& path, std::vector<std::string>& r
   IO::internal::check_input_file(path);
   if (!std::ifstream(path, std::ios::binary)) throw Input_error(path, 0, "", "cannot open the file for reading");
   if (ext == ".obj") check_obj_face_indices(path);
-  if (ext == ".off") check_off_file(path);
   if (ext == ".ply") check_ply_file(path);
 
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> faces;
   bool read = false;
   try {
-    read = CGAL::IO::read_polygon_soup(path, points, faces);
+    if (ext == ".off") {
+      read_ascii_off(path, points, faces);
+      read = true;
+    } else {
+      read = CGAL::IO::read_polygon_soup(path, points, faces);
+    }
+  } catch (const Input_error&) {
+    throw;
   } catch (const std::exception& e) {
     throw Input_error(path, 0, "", std::string("cannot read the file: ") + e.what());
   }
@@ -395,6 +439,42 @@ Surface read_closed_surface(const std::string& path, std::vector<std::string>& r
                       std::to_string(faces_before - std::min(faces_before, faces.size())) +
                       " degenerate or duplicate faces removed)");
   }
+  // Polygons: split into triangles here, in the soup. Only convex planar
+  // polygons are accepted (decided with exact predicates) and fanned from
+  // their first vertex: CGAL 5.5's triangulate_faces() binds null references
+  // on polygons with coinciding, collinear or crossing vertices (found by
+  // fuzz_surface), and such faces have no clear meaning anyway.
+  std::size_t polygons = 0;
+  std::vector<std::vector<std::size_t>> triangles;
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const std::vector<std::size_t>& face = faces[f];
+    if (face.size() == 3) {
+      triangles.push_back(face);
+      continue;
+    }
+    ++polygons;
+    const std::size_t n = face.size();
+    const auto P = [&](std::size_t i) -> const Point& { return points[face[i % n]]; };
+    bool convex = true;
+    for (std::size_t i = 0; i < n && convex; ++i) {
+      if (CGAL::collinear(P(i), P(i + 1), P(i + 2))) convex = false;
+      for (std::size_t j = 0; j < n && convex; ++j)
+        if (j != i && j != (i + 1) % n && j != (i + 2) % n)
+          convex = CGAL::coplanar(P(i), P(i + 1), P(i + 2), P(j)) &&
+                   CGAL::coplanar_orientation(P(i), P(i + 1), P(i + 2), P(j)) == CGAL::POSITIVE &&
+                   CGAL::coplanar_orientation(P(i + 1), P(i + 2), P(i), P(j)) == CGAL::POSITIVE;
+    }
+    if (!convex)
+      throw Input_error(path, 0, "",
+                        "a face with " + std::to_string(n) + " vertices, from (" + number_text(P(0).x()) + ", " +
+                            number_text(P(0).y()) + ", " + number_text(P(0).z()) +
+                            "), is not a convex planar polygon (coinciding, collinear or crossing vertices, or "
+                            "not in one plane): triangulate it first");
+    for (std::size_t i = 1; i + 1 < n; ++i) triangles.push_back({face[0], face[i], face[i + 1]});
+  }
+  if (polygons > 0) repairs.push_back(std::to_string(polygons) + " faces with more than 3 vertices triangulated");
+  faces.swap(triangles);
+
   Surface surface;
   PMP::polygon_soup_to_polygon_mesh(points, faces, surface);
   points.clear();
@@ -405,15 +485,6 @@ Surface read_closed_surface(const std::string& path, std::vector<std::string>& r
   if (const std::size_t isolated = PMP::remove_isolated_vertices(surface)) {
     surface.collect_garbage();
     repairs.push_back(std::to_string(isolated) + " vertices used by no face removed");
-  }
-
-  if (!CGAL::is_triangle_mesh(surface)) {
-    std::size_t polygons = 0;
-    for (auto f : surface.faces())
-      if (surface.degree(f) != 3) ++polygons;
-    if (!PMP::triangulate_faces(surface))
-      throw Input_error(path, 0, "", "a face with more than 3 vertices could not be triangulated");
-    repairs.push_back(std::to_string(polygons) + " faces with more than 3 vertices triangulated");
   }
 
   std::size_t border_edges = 0;
