@@ -217,6 +217,21 @@ void expect_error(F f, const std::vector<std::string>& words) {
   }
 }
 
+// tetrahedralize_surface(path) must throw an Input_error with these parts
+// (an element of nullptr is not checked).
+void expect_surface_error(const std::string& path, std::size_t line, const char* element, const std::string& problem) {
+  try {
+    CGAL_ext::tetrahedralize_surface(path);
+    FAIL("no Input_error for " << path);
+  } catch (const Input_error& e) {
+    INFO(e.what());
+    CHECK(e.file() == path);
+    CHECK(e.line() == line);
+    if (element) CHECK(e.element() == element);
+    CHECK(e.problem() == problem);
+  }
+}
+
 } // namespace
 
 TEST_CASE("an octahedron: orientation, volume, closed boundary, sharp edges", "[tetrahedralize]") {
@@ -523,17 +538,7 @@ TEST_CASE("OBJ face indices 0 and out of range are reported with the file and th
     return "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\n" + bad + "\nf 2 3 4\n";
   };
   const auto expect = [&](const std::string& name, const std::string& bad, const std::string& problem) {
-    const std::string path = write_file(name, tetrahedron(bad));
-    try {
-      tetrahedralize_surface(path);
-      FAIL("no Input_error for " << bad);
-    } catch (const Input_error& e) {
-      INFO(e.what());
-      CHECK(e.file() == path);
-      CHECK(e.line() == 7);
-      CHECK(e.element() == "face 3");
-      CHECK(e.problem() == problem);
-    }
+    expect_surface_error(write_file(name, tetrahedron(bad)), 7, "face 3", problem);
   };
   expect("zero.obj", "f 1 0 3", "vertex index 0 is not valid: OBJ indices start at 1 (negative ones count back)");
   expect("zero_slashes.obj", "f 1/1/1 0/2/2 3/3/3",
@@ -571,18 +576,8 @@ TEST_CASE("OFF counts and faces are checked with the file and the line before CG
     return "OFF\n" + counts + "\n# vertices\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n" + face + "\n3 1 2 3\n";
   };
   const auto expect = [&](const std::string& name, const std::string& counts, const std::string& face,
-                          std::size_t line, const std::string& element, const std::string& problem) {
-    const std::string path = write_file(name, tetrahedron(counts, face));
-    try {
-      tetrahedralize_surface(path);
-      FAIL("no Input_error for " << counts << " / " << face);
-    } catch (const Input_error& e) {
-      INFO(e.what());
-      CHECK(e.file() == path);
-      CHECK(e.line() == line);
-      CHECK(e.element() == element);
-      CHECK(e.problem() == problem);
-    }
+                          std::size_t line, const char* element, const std::string& problem) {
+    expect_surface_error(write_file(name, tetrahedron(counts, face)), line, element, problem);
   };
   // Found by fuzz_surface: CGAL converts a face's vertex count -1, read as a
   // double, to size_t (undefined behaviour).
@@ -629,16 +624,7 @@ TEST_CASE("PLY headers are checked with the file and the line before CGAL's read
   const std::string face = "element face 4\nproperty list uchar int vertex_indices\n";
   const auto expect = [&](const std::string& name, const std::string& header, std::size_t line,
                           const std::string& problem, bool then_body = true) {
-    const std::string path = write_file(name, then_body ? header + body : header);
-    try {
-      tetrahedralize_surface(path);
-      FAIL("no Input_error for " << header);
-    } catch (const Input_error& e) {
-      INFO(e.what());
-      CHECK(e.file() == path);
-      CHECK(e.line() == line);
-      CHECK(e.problem() == problem);
-    }
+    expect_surface_error(write_file(name, then_body ? header + body : header), line, nullptr, problem);
   };
   // Found by fuzz_surface: CGAL adds a property to the last element, which
   // does not exist yet (undefined behaviour).
