@@ -3,10 +3,14 @@
 #include <CGAL_ext/IO/read_tet_mesh.h>
 #include <CGAL_ext/Tet_mesh_statistics_3.h>
 
+#include "reference/degenerate_test_meshes.h"
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <filesystem>
+#include <map>
+#include <random>
 #include <set>
 
 using namespace CGAL_ext;
@@ -237,11 +241,12 @@ TEST_CASE("write and read back round-trips vertices and tetrahedra", "[build][me
 
 namespace {
 
-// Adds the unit cube at `origin`, with 8 new vertices, as 6 Kuhn tetrahedra.
+// Adds the cube of side `side` at `origin`, with 8 new vertices, as 6 Kuhn tetrahedra.
 void add_cube(std::vector<std::array<double, 3>>& p, std::vector<std::array<std::size_t, 4>>& t,
-              const std::array<double, 3>& origin) {
+              const std::array<double, 3>& origin, double side = 1) {
   const std::size_t base = p.size();
-  for (int v = 0; v < 8; ++v) p.push_back({origin[0] + (v & 1), origin[1] + ((v >> 1) & 1), origin[2] + ((v >> 2) & 1)});
+  for (int v = 0; v < 8; ++v)
+    p.push_back({origin[0] + side * (v & 1), origin[1] + side * ((v >> 1) & 1), origin[2] + side * ((v >> 2) & 1)});
   static const int perms[6][3] = {{1, 2, 4}, {1, 4, 2}, {2, 1, 4}, {2, 4, 1}, {4, 1, 2}, {4, 2, 1}};
   for (const auto& q : perms) {
     const std::size_t a = 0, b = std::size_t(q[0]), c = b + std::size_t(q[1]), d = 7;
@@ -276,7 +281,7 @@ TEST_CASE("parts that overlap or touch without sharing vertices are errors namin
       CHECK(e.element().rfind("tetrahedron ", 0) == 0);
       CHECK(std::stoi(e.element().substr(12)) > 6); // a tet of the second cube
       CHECK(e.problem().find("overlaps or touches tetrahedron ") == 0);
-      CHECK(e.problem().find("without sharing vertices") != std::string::npos);
+      CHECK(e.problem().find("where they share no vertex") != std::string::npos);
     }
   }
   // Apart, or sharing the vertices where they touch: accepted.
@@ -289,4 +294,233 @@ TEST_CASE("parts that overlap or touch without sharing vertices are errors namin
   CHECK(compute_tet_mesh_statistics(tr, Is_tet_mesh_domain_cell()).components == 2);
   for (const char* f : {"two_cubes_sharing_edge.mesh", "two_cubes_sharing_vertex.mesh", "gmsh_box_with_hole.mesh", "tetgen_cube.mesh"})
     CHECK_NOTHROW(IO::read_tet_mesh(data_dir + "/" + f, tr));
+}
+
+namespace {
+
+// The error that building reports, or "accepted".
+std::string build_error(const std::vector<std::array<double, 3>>& p, const std::vector<std::array<std::size_t, 4>>& t) {
+  Tr tr;
+  try {
+    build_triangulation_from_tets(p, t, {}, tr, Tet_soup_source{"m.mesh", {}, {}});
+  } catch (const Input_error& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+// Which test rejected a mesh: the shared facet, the boundary, an edge or a vertex.
+std::string overlap_kind(const std::string& error) {
+  for (const char* k : {"zero volume", "across their common facet", "where they share no vertex", "about their common edge",
+                        "which it does not use", "duplicates tetrahedron", "appears twice", "is shared by"})
+    if (contains(error, k)) return k;
+  return "other: " + error;
+}
+
+} // namespace
+
+// Found by fuzz_medit_mesh: one vertex index changed in the 2x2x2 Kuhn cube
+// (tetrahedron 34, (11, 14, 15, 24) -> (11, 14, 18, 24)). Every tet is
+// positive and every shared facet separates its two tets, but the new tet
+// folds over its neighbours around vertex 14, where all the boundary facets
+// that meet share a vertex.
+TEST_CASE("a mesh folded over itself near a shared vertex is an error", "[build][bad-input]") {
+  IO::Medit_mesh m = IO::read_medit_mesh(data_dir + "/cube_kuhn_2.mesh");
+  REQUIRE(m.tetrahedra[33] == std::array<std::size_t, 4>{10, 13, 14, 23});
+  m.tetrahedra[33][2] = 17;
+  const std::string e = build_error(m.vertices, m.tetrahedra);
+  INFO(e);
+  CHECK(contains(e, "m.mesh: tetrahedron "));
+  CHECK(contains(e, "overlap"));
+}
+
+// Two tetrahedra with one common vertex, and two with a common edge, in
+// every relative position that the shared-vertex and shared-edge tests of
+// find_boundary_overlap() distinguish.
+TEST_CASE("tetrahedra sharing a vertex or an edge may touch only there", "[build][bad-input]") {
+  const std::array<double, 3> o{0, 0, 0};
+  // One common vertex (the origin).
+  const std::vector<std::array<double, 3>> p{o, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, // tet 1 in the positive octant
+                                             {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}};
+  CHECK(build_error(p, {{0, 1, 2, 3}, {0, 4, 5, 6}}) == "accepted"); // opposite octants
+  // A second tet turned into the first: its edges cross the first's facets.
+  std::vector<std::array<double, 3>> q = p;
+  q[4] = {1, 1, 0.2};
+  q[5] = {0.2, 1, 1};
+  q[6] = {1, 0.2, 1};
+  CHECK(contains(build_error(q, {{0, 1, 2, 3}, {0, 4, 5, 6}}), "where they share no vertex"));
+  // A small tet inside the first one: no boundary facets meet, but its
+  // vertices lie inside the first.
+  q[4] = {0.3, 0.3, 0.3};
+  q[5] = {0.35, 0.3, 0.3};
+  q[6] = {0.3, 0.35, 0.3};
+  CHECK(contains(build_error(q, {{0, 1, 2, 3}, {0, 4, 5, 6}}), "tetrahedron 1: contains vertex 5, which it does not use"));
+  // Touching along a segment from the common vertex: facet (0,1,2) and a
+  // facet of the second tet through the segment (0, (1,1,0)) below it.
+  q[4] = {1, 1, 0};
+  q[5] = {1, 1, -1};
+  q[6] = {2, 1, -1};
+  const std::string touch = build_error(q, {{0, 1, 2, 3}, {0, 4, 5, 6}});
+  INFO(touch);
+  CHECK(contains(touch, "where they share no vertex"));
+  // Touching only at the common vertex, their facets in one plane: accepted.
+  q[4] = {-1, 0, 0};
+  q[5] = {0, -1, 0};
+  q[6] = {-1, -1, 1};
+  CHECK(build_error(q, {{0, 1, 2, 3}, {0, 4, 5, 6}}) == "accepted");
+
+  // One common edge (0, 1): facets (0, 1, 2) and (0, 1, 4) in the plane z = 0.
+  std::vector<std::array<double, 3>> r{o, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.5, 2, 0}, {0, 0, -1}};
+  // On the same side of the edge, the tets on either side of the plane: the
+  // facets overlap in a triangle, which no edge and no vertex reveals.
+  const std::string same = build_error(r, {{0, 1, 2, 3}, {0, 1, 4, 5}});
+  INFO(same);
+  CHECK(contains(same, "tetrahedron 2: overlaps or touches tetrahedron 1 where they share no vertex"));
+  CHECK(contains(same, "(1, 2, 5) and (1, 2, 3)"));
+  // On opposite sides of the edge: they touch along the edge only.
+  r[4] = {0.5, -2, 0};
+  CHECK(build_error(r, {{0, 1, 2, 3}, {0, 1, 4, 5}}) == "accepted");
+}
+
+// Five tets around one edge, each turning 100 degrees about it: 500 degrees
+// in all. The last one lies inside the second; their boundary facets meet
+// only in the common edge and vertices, so only the wedges about the edge
+// reveal it.
+TEST_CASE("tetrahedra turning more than once about an edge are an error naming the edge", "[build][bad-input]") {
+  std::vector<std::array<double, 3>> p{{0, 0, -1}, {0, 0, 1}};
+  const double pi = std::acos(-1.0);
+  for (int k = 0; k <= 5; ++k) {
+    const double a = k * 100 * pi / 180, radius = k == 5 ? 0.3 : 1;
+    p.push_back({radius * std::cos(a), radius * std::sin(a), 0});
+  }
+  std::vector<std::array<std::size_t, 4>> t;
+  for (std::size_t k = 0; k < 5; ++k) t.push_back({0, 1, 2 + k, 3 + k});
+  const std::string e = build_error(p, t);
+  INFO(e);
+  CHECK(contains(e, "m.mesh: tetrahedron 5: overlaps tetrahedron "));
+  CHECK(contains(e, " about their common edge (1, 2)"));
+  // Four of them (400 degrees) still fold; three (300 degrees) do not.
+  t.pop_back();
+  p[6] = {0.3 * std::cos(4 * 100 * pi / 180), 0.3 * std::sin(4 * 100 * pi / 180), 0};
+  CHECK(contains(build_error(p, t), "about their common edge (1, 2)"));
+  t.pop_back();
+  CHECK(build_error(p, t) == "accepted");
+}
+
+// A small cube inside a cell of a larger one, with no boundary contact:
+// only a vertex inside a tetrahedron reveals it.
+TEST_CASE("a part of the mesh nested inside another is an error", "[build][bad-input]") {
+  std::vector<std::array<double, 3>> p;
+  std::vector<std::array<std::size_t, 4>> t;
+  add_cube(p, t, {0, 0, 0}, 8);
+  add_cube(p, t, {5, 2, 1}, 0.5); // inside the Kuhn tet (0, x, x+y, x+y+z) of the big cube
+  const std::string e = build_error(p, t);
+  INFO(e);
+  CHECK(contains(e, "m.mesh: tetrahedron "));
+  CHECK(contains(e, "contains vertex "));
+  CHECK(contains(e, "which it does not use"));
+  // The same small cube beside the big one: two components, accepted.
+  p.resize(8);
+  t.resize(6);
+  add_cube(p, t, {9, 2, 1}, 0.5);
+  CHECK(build_error(p, t) == "accepted");
+}
+
+// Moving interior vertices of a Kuhn grid, whose boundary stays in place:
+// the mesh stays embedded exactly when every tetrahedron stays positive (the
+// degree argument), which CGAL's orientation predicate decides independently
+// of the overlap tests. Displacements on a 1/8 lattice make many tets flat
+// or coplanar with their neighbours' facets.
+TEST_CASE("moved interior vertices: accepted exactly when every tetrahedron stays positive", "[build][bad-input][randomized]") {
+  const auto grid = testing::kuhn_grid(4, 4, 4, 1.0);
+  std::vector<std::size_t> interior;
+  for (std::size_t v = 0; v < grid.points.size(); ++v) {
+    bool inside = true;
+    for (double x : grid.points[v]) inside = inside && x > 0 && x < 4;
+    if (inside) interior.push_back(v);
+  }
+  REQUIRE(interior.size() == 27);
+  std::mt19937_64 rng(20261202);
+  std::map<std::string, int> outcomes;
+  for (int trial = 0; trial < 3000; ++trial) {
+    auto points = grid.points;
+    const int moved = 1 + trial % 3;
+    for (int k = 0; k < moved; ++k) {
+      const std::size_t v = interior[std::uniform_int_distribution<std::size_t>(0, interior.size() - 1)(rng)];
+      for (double& x : points[v]) x += 0.125 * std::uniform_int_distribution<int>(-6, 6)(rng);
+    }
+    bool positive = true, flat = false;
+    for (const auto& c : grid.tets) {
+      const auto o = CGAL::orientation(Tr::Point(points[c[0]][0], points[c[0]][1], points[c[0]][2]),
+                                       Tr::Point(points[c[1]][0], points[c[1]][1], points[c[1]][2]),
+                                       Tr::Point(points[c[2]][0], points[c[2]][1], points[c[2]][2]),
+                                       Tr::Point(points[c[3]][0], points[c[3]][1], points[c[3]][2]));
+      positive = positive && o == CGAL::POSITIVE;
+      flat = flat || o == CGAL::ZERO;
+    }
+    const std::string e = build_error(points, grid.tets);
+    INFO("trial " << trial << ": " << e);
+    if (positive) {
+      REQUIRE(e == "accepted");
+      ++outcomes["accepted"];
+    } else if (flat) {
+      REQUIRE(contains(e, "zero volume"));
+      ++outcomes["zero volume"];
+    } else {
+      REQUIRE(e != "accepted");
+      ++outcomes[overlap_kind(e)];
+    }
+  }
+  for (const auto& [k, n] : outcomes) UNSCOPED_INFO(k << ": " << n);
+  CHECK(outcomes["accepted"] > 300);
+  CHECK(outcomes["zero volume"] > 300);
+  CHECK(outcomes["across their common facet"] > 300);
+}
+
+// One vertex index of one tetrahedron changed, as the fuzzer does: the mesh
+// then has a hole and, mostly, an overlap. Whatever is accepted must cover
+// no sample point twice (exact point-in-tetrahedron tests at the centroids
+// of the tets and at random points). The tally shows which test finds what.
+TEST_CASE("a changed vertex index: no accepted mesh covers a point twice", "[build][bad-input][randomized]") {
+  const auto grid = testing::kuhn_grid(3, 3, 3, 1.0);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> coordinate(0, 3);
+  std::map<std::string, int> outcomes;
+  for (int trial = 0; trial < 1000; ++trial) {
+    auto tets = grid.tets;
+    const std::size_t t = std::uniform_int_distribution<std::size_t>(0, tets.size() - 1)(rng);
+    const std::size_t j = std::uniform_int_distribution<std::size_t>(0, 3)(rng);
+    tets[t][j] = std::uniform_int_distribution<std::size_t>(0, grid.points.size() - 1)(rng);
+    const std::string e = build_error(grid.points, tets);
+    INFO("trial " << trial << ": tet " << t + 1 << ", vertex " << j << " -> " << tets[t][j] + 1 << ": " << e);
+    if (e != "accepted") {
+      ++outcomes[overlap_kind(e)];
+      continue;
+    }
+    ++outcomes["accepted"];
+    auto P = [&](std::size_t v) { return Tr::Point(grid.points[v][0], grid.points[v][1], grid.points[v][2]); };
+    std::vector<Tr::Point> samples;
+    for (const auto& c : tets) samples.push_back(CGAL::centroid(P(c[0]), P(c[1]), P(c[2]), P(c[3])));
+    for (int k = 0; k < 200; ++k) samples.emplace_back(coordinate(rng), coordinate(rng), coordinate(rng));
+    for (const auto& x : samples) {
+      int covering = 0;
+      for (const auto& c : tets) {
+        std::array<Tr::Point, 4> q{P(c[0]), P(c[1]), P(c[2]), P(c[3])};
+        if (CGAL::orientation(q[0], q[1], q[2], q[3]) == CGAL::NEGATIVE) std::swap(q[2], q[3]);
+        bool inside = true;
+        for (std::size_t m = 0; m < 4 && inside; ++m) {
+          auto r = q;
+          r[m] = x;
+          inside = CGAL::orientation(r[0], r[1], r[2], r[3]) == CGAL::POSITIVE;
+        }
+        covering += inside;
+      }
+      REQUIRE(covering <= 1);
+    }
+  }
+  for (const auto& [k, n] : outcomes) UNSCOPED_INFO(k << ": " << n);
+  CHECK(outcomes["accepted"] > 0);
+  CHECK(outcomes["about their common edge"] > 100);
 }

@@ -7,7 +7,8 @@
 /// Builds a `Tet_mesh_triangulation_3` from a list of points and tetrahedra.
 
 #include <CGAL_ext/Input_error.h>
-#include <CGAL_ext/internal/Boundary_overlap.h>
+#include <CGAL_ext/internal/Angle_around_edge_3.h>
+#include <CGAL_ext/internal/Tet_mesh_overlap.h>
 #include <CGAL_ext/Tet_mesh_triangulation_3.h>
 
 #include <algorithm>
@@ -98,10 +99,11 @@ struct Facet_record {
 ///         tetrahedron, a non-finite coordinate, a zero-volume tetrahedron, a
 ///         facet shared by more than two tetrahedra, two tetrahedra on the
 ///         same side of their common facet, parts of the mesh that overlap or
-///         touch without sharing vertices (two boundary facets with no common
-///         vertex that meet, decided exactly; see
-///         `internal::find_boundary_overlap()` for what is not detected), or
-///         an empty tet list.
+///         touch where they share no vertex (two boundary facets that meet
+///         elsewhere than in their common vertices, tetrahedra that turn more
+///         than once about their common edge, or a boundary vertex inside a
+///         tetrahedron that does not use it; all decided exactly, see
+///         internal/Tet_mesh_overlap.h), or an empty tet list.
 template <class Geom_traits>
 Tet_mesh_build_report build_triangulation_from_tets(
     const std::vector<std::array<double, 3>>& points, const std::vector<std::array<std::size_t, 4>>& tets,
@@ -235,29 +237,48 @@ Tet_mesh_build_report build_triangulation_from_tets(
     }
   }
 
-  // Parts of the mesh that overlap or touch without sharing vertices: two
-  // boundary facets that meet although they share no vertex.
+  // Parts of the mesh that overlap, or touch where they share no vertex
+  // (internal/Tet_mesh_overlap.h): tetrahedra turning about an edge more
+  // than once (a fold, named by its edge), ...
+  if (const auto hit = internal::find_overlap_around_edge(points, oriented)) {
+    const std::size_t t = hit->tets[1];
+    throw Input_error(src.file, internal::tet_line(src, t), internal::tet_name(src, t),
+                      "overlaps tetrahedron " + std::to_string(hit->tets[0] + 1) + " about their common edge (" +
+                          std::to_string(hit->edge[0] + 1) + ", " + std::to_string(hit->edge[1] + 1) +
+                          "): the tetrahedra around this edge turn about it more than once (the mesh folds over itself)");
+  }
+  // ... the boundary meeting itself, ...
+  auto facet_text = [&](std::array<std::size_t, 3> t) {
+    std::sort(t.begin(), t.end());
+    return "(" + std::to_string(t[0] + 1) + ", " + std::to_string(t[1] + 1) + ", " + std::to_string(t[2] + 1) + ")";
+  };
+  std::vector<std::array<std::size_t, 3>> triangles;
+  triangles.reserve(boundary.size());
+  for (const auto& bf : boundary) {
+    std::array<std::size_t, 3> t;
+    for (int k = 0; k < 3; ++k) t[std::size_t(k)] = cells[bf.first]->vertex((bf.second + 1 + k) & 3)->info();
+    triangles.push_back(t);
+  }
+  if (const auto hit = internal::find_boundary_overlap(points, triangles)) {
+    const std::size_t ta = boundary[(*hit)[0]].first, tb = boundary[(*hit)[1]].first;
+    throw Input_error(src.file, internal::tet_line(src, std::max(ta, tb)), internal::tet_name(src, std::max(ta, tb)),
+                      "overlaps or touches tetrahedron " + std::to_string(std::min(ta, tb) + 1) +
+                          " where they share no vertex: their boundary facets " + facet_text(triangles[(*hit)[ta < tb ? 1 : 0]]) +
+                          " and " + facet_text(triangles[(*hit)[ta < tb ? 0 : 1]]) +
+                          " meet elsewhere than in their common vertices (parts of a mesh must share the vertices where "
+                          "they touch)");
+  }
+  // ... and a part inside another one, with no boundary contact.
   {
-    std::vector<std::array<std::size_t, 3>> triangles;
-    triangles.reserve(boundary.size());
-    for (const auto& bf : boundary) {
-      std::array<std::size_t, 3> t;
-      for (int k = 0; k < 3; ++k) t[std::size_t(k)] = cells[bf.first]->vertex((bf.second + 1 + k) & 3)->info();
-      triangles.push_back(t);
-    }
-    if (const auto hit = internal::find_boundary_overlap(points, triangles)) {
-      const std::size_t ta = boundary[(*hit)[0]].first, tb = boundary[(*hit)[1]].first;
-      auto facet = [&](std::size_t i) {
-        std::array<std::size_t, 3> t = triangles[i];
-        std::sort(t.begin(), t.end());
-        return "(" + std::to_string(t[0] + 1) + ", " + std::to_string(t[1] + 1) + ", " + std::to_string(t[2] + 1) + ")";
-      };
-      throw Input_error(src.file, internal::tet_line(src, std::max(ta, tb)), internal::tet_name(src, std::max(ta, tb)),
-                        "overlaps or touches tetrahedron " + std::to_string(std::min(ta, tb) + 1) +
-                            " without sharing vertices: their boundary facets " + facet((*hit)[ta < tb ? 1 : 0]) +
-                            " and " + facet((*hit)[ta < tb ? 0 : 1]) +
-                            " meet (parts of a mesh must share the vertices where they touch)");
-    }
+    std::vector<std::size_t> boundary_vertices;
+    for (const auto& t : triangles) boundary_vertices.insert(boundary_vertices.end(), t.begin(), t.end());
+    std::sort(boundary_vertices.begin(), boundary_vertices.end());
+    boundary_vertices.erase(std::unique(boundary_vertices.begin(), boundary_vertices.end()), boundary_vertices.end());
+    if (const auto hit = internal::find_vertex_inside_tet(points, oriented, boundary_vertices))
+      throw Input_error(src.file, internal::tet_line(src, hit->tet), internal::tet_name(src, hit->tet),
+                        "contains vertex " + std::to_string(hit->vertex + 1) +
+                            ", which it does not use: parts of the mesh overlap (a mesh must share the vertices where "
+                            "its parts touch)");
   }
 
   // Close every boundary facet with an infinite cell (inf, then the facet
@@ -332,23 +353,15 @@ Tet_mesh_build_report build_triangulation_from_tets(
         const bool outside_ccw = orientation(pa, pb, apex, inner) == CGAL::NEGATIVE;
         around.push_back({apex, 0, outside_ccw, k});
       }
-      const Point ref = around.front().apex;
-      for (auto& x : around) {
-        const CGAL::Orientation o = orientation(pa, pb, ref, x.apex);
-        if (o == CGAL::POSITIVE) x.half = 0;
-        else if (o == CGAL::NEGATIVE) x.half = 1;
-        else x.half = (CGAL::coplanar_orientation(pa, pb, ref, x.apex) == CGAL::POSITIVE) ? 0 : 1;
-      }
-      // Counterclockwise around (a -> b), seen with orientation(a, b, u, w) > 0 meaning w follows u.
-      std::sort(around.begin(), around.end(), [&](const Around& u, const Around& w) {
-        if (u.half != w.half) return u.half < w.half;
-        return orientation(pa, pb, u.apex, w.apex) == CGAL::POSITIVE;
-      });
+      const internal::Angle_around_edge_3<Geom_traits> angle(pa, pb, around.front().apex, tr.geom_traits());
+      for (auto& x : around) x.half = angle.half(x.apex);
+      std::sort(around.begin(), around.end(),
+                [&](const Around& u, const Around& w) { return angle.less(u.apex, u.half, w.apex, w.half); });
       for (std::size_t m = 0; m < around.size(); ++m) {
         const Around& u = around[m];
         const Around& w = around[(m + 1) % around.size()];
         if (!u.outside_ccw) continue;
-        if (w.outside_ccw)
+        if (w.outside_ccw) // cannot happen after find_overlap_around_edge()
           throw Input_error(src.file, 0, "edge (" + std::to_string(edges[i].key[0] + 1) + ", " + std::to_string(edges[i].key[1] + 1) + ")",
                             "the tetrahedra around this edge overlap");
         tds.set_adjacency(inf_cells[edges[u.rec].cell], edges[u.rec].facet, inf_cells[edges[w.rec].cell], edges[w.rec].facet);

@@ -3,13 +3,46 @@
 //
 // Fuzzes the Medit .mesh reader and the triangulation built from its
 // tetrahedra (read_tet_mesh): any input must give a triangulation holding
-// every tetrahedron, positively oriented, with consistent adjacency, or an
+// every tetrahedron, positively oriented, with consistent adjacency and no
+// two tetrahedra overlapping (a point strictly inside both), or an
 // Input_error naming the file.
 #include "fuzz_input.h"
 
 #include <CGAL_ext/IO/read_tet_mesh.h>
 
 #include <cstdlib>
+#include <vector>
+
+namespace {
+
+using Tr = CGAL_ext::Tet_mesh_triangulation_3<>;
+
+bool strictly_inside(const Tr::Point& x, Tr::Cell_handle c) {
+  for (int m = 0; m < 4; ++m) {
+    std::array<Tr::Point, 4> r;
+    for (int k = 0; k < 4; ++k) r[std::size_t(k)] = k == m ? x : c->vertex(k)->point();
+    if (CGAL::orientation(r[0], r[1], r[2], r[3]) != CGAL::POSITIVE) return false;
+  }
+  return true;
+}
+
+// An oracle independent of the library's overlap tests: the (rounded)
+// centroid of a tetrahedron, where it is strictly inside it, must not be
+// strictly inside another one.
+void check_no_overlap(const Tr& tr) {
+  std::vector<Tr::Cell_handle> cells;
+  for (auto c : tr.finite_cell_handles()) cells.push_back(c);
+  if (cells.size() > 512) return; // quadratic
+  for (auto a : cells) {
+    const Tr::Point x = CGAL::centroid(a->vertex(0)->point(), a->vertex(1)->point(), a->vertex(2)->point(),
+                                       a->vertex(3)->point());
+    if (!strictly_inside(x, a)) continue;
+    for (auto b : cells)
+      if (b != a && strictly_inside(x, b)) std::abort();
+  }
+}
+
+} // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string path = fuzz::write_input(data, size, ".mesh");
@@ -36,6 +69,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             std::abort();
         }
         if (domain_cells != mesh.tetrahedra.size()) std::abort();
+        check_no_overlap(tr);
         (void)report;
       },
       path);
