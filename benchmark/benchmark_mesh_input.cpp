@@ -21,13 +21,14 @@
 #include <CGAL_ext/build_triangulation_from_tets.h>
 #include <CGAL_ext/internal/Tet_mesh_overlap.h>
 
+#include "kuhn_grid.h"
+
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -44,35 +45,6 @@ double median_seconds(int repeats, const std::function<void()>& f) {
   }
   std::sort(t.begin(), t.end());
   return t[t.size() / 2];
-}
-
-// A Kuhn grid of n^3 unit cubes, its interior vertices moved by up to `jitter`.
-void jittered_kuhn_grid(int n, double jitter, std::vector<std::array<double, 3>>& points,
-                        std::vector<std::array<std::size_t, 4>>& tets) {
-  std::mt19937_64 rng(1);
-  std::uniform_real_distribution<double> move(-jitter, jitter);
-  auto id = [&](int i, int j, int k) { return std::size_t((k * (n + 1) + j) * (n + 1) + i); };
-  for (int k = 0; k <= n; ++k)
-    for (int j = 0; j <= n; ++j)
-      for (int i = 0; i <= n; ++i) {
-        std::array<double, 3> p{double(i), double(j), double(k)};
-        for (double& x : p)
-          if (x > 0 && x < n) x += move(rng);
-        points.push_back(p);
-      }
-  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        for (const auto& pm : perms) {
-          std::array<int, 3> c{i, j, k};
-          std::array<std::size_t, 4> t{id(i, j, k), 0, 0, 0};
-          for (int s = 0; s < 3; ++s) {
-            ++c[pm[s]];
-            t[std::size_t(s + 1)] = id(c[0], c[1], c[2]);
-          }
-          tets.push_back(t);
-        }
 }
 
 } // namespace
@@ -96,8 +68,10 @@ int main(int argc, char** argv) {
     tets = std::move(mesh.tetrahedra);
     name = argv[1];
   } else {
-    jittered_kuhn_grid(n, jitter, points, tets);
-    name = "Kuhn grid " + std::to_string(n) + "^3, jitter " + std::to_string(jitter);
+    benchmark_meshes::kuhn_grid(n, 0, 1, points, tets, jitter);
+    char text[64];
+    std::snprintf(text, sizeof text, "Kuhn grid %d^3, jitter %g", n, jitter);
+    name = text;
   }
   // The overlap tests take positive tetrahedra (the build re-orients first).
   for (auto& t : tets) {

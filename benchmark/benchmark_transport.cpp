@@ -21,6 +21,8 @@
 #include <CGAL_ext/Tet_mesh_triangulation_3.h>
 #include <CGAL_ext/build_triangulation_from_tets.h>
 
+#include "kuhn_grid.h"
+
 #include <tbb/global_control.h>
 
 #include <Eigen/Core>
@@ -54,28 +56,6 @@ Eigen::Matrix3d flat_metric(const Point& p) {
   const double c1 = 0.4 * std::cos(y + z), c2 = 0.3 * std::cos(z * x);
   J << 1, c1, c1, c2 * z, 1, c2 * x, 0.5 * std::cos(x), 0, 1;
   return J.transpose() * J;
-}
-
-void kuhn_grid(int n, std::vector<std::array<double, 3>>& points, std::vector<std::array<std::size_t, 4>>& tets) {
-  const double lo = -0.5, h = 1.5 / n;
-  auto id = [n](int i, int j, int k) { return std::size_t((k * (n + 1) + j) * (n + 1) + i); };
-  for (int k = 0; k <= n; ++k)
-    for (int j = 0; j <= n; ++j)
-      for (int i = 0; i <= n; ++i) points.push_back({lo + h * i, lo + h * j, lo + h * k});
-  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        for (const auto& pm : perms) {
-          std::array<int, 3> c{i, j, k};
-          std::array<std::size_t, 4> t;
-          t[0] = id(c[0], c[1], c[2]);
-          for (int s = 0; s < 3; ++s) {
-            ++c[pm[s]];
-            t[s + 1] = id(c[0], c[1], c[2]);
-          }
-          tets.push_back(t); // the builder re-orients the negative half
-        }
 }
 
 Pairs make_pairs(int n, std::size_t count, bool crossing, unsigned seed) {
@@ -145,7 +125,7 @@ int main(int argc, char** argv) {
     const bool rough = run_index == 2;
     std::vector<std::array<double, 3>> points;
     std::vector<std::array<std::size_t, 4>> tets;
-    kuhn_grid(n, points, tets);
+    benchmark_meshes::kuhn_grid(n, -0.5, 1.5 / n, points, tets);
     Tr tr;
     const auto t0 = std::chrono::steady_clock::now();
     CGAL_ext::build_triangulation_from_tets(points, tets, {}, tr);

@@ -444,7 +444,7 @@ TEST_CASE("moved interior vertices: accepted exactly when every tetrahedron stay
   REQUIRE(interior.size() == 27);
   std::mt19937_64 rng(20261202);
   std::map<std::string, int> outcomes;
-  for (int trial = 0; trial < 3000; ++trial) {
+  for (int trial = 0; trial < 2000; ++trial) {
     auto points = grid.points;
     const int moved = 1 + trial % 3;
     for (int k = 0; k < moved; ++k) {

@@ -1,0 +1,55 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_EXT_BENCHMARK_KUHN_GRID_H
+#define CGAL_EXT_BENCHMARK_KUHN_GRID_H
+
+// The benchmarks' structured mesh: a Kuhn (Freudenthal) grid of n^3 cubes
+// of side h from (lo, lo, lo), 6 tetrahedra per cube around its diagonal,
+// half of them negatively oriented (the builder re-orients them).
+
+#include <array>
+#include <cstddef>
+#include <random>
+#include <vector>
+
+namespace benchmark_meshes {
+
+/// Appends the grid's (n+1)^3 vertices and 6 n^3 tetrahedra; interior
+/// vertices are moved by up to `jitter` (in units of h) in each coordinate,
+/// from a fixed seed (below 0.25 every tetrahedron keeps its orientation).
+inline void kuhn_grid(int n, double lo, double h, std::vector<std::array<double, 3>>& points,
+                      std::vector<std::array<std::size_t, 4>>& tets, double jitter = 0) {
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> move(-jitter, jitter);
+  const std::size_t base = points.size();
+  auto id = [&](int i, int j, int k) { return base + std::size_t((k * (n + 1) + j) * (n + 1) + i); };
+  for (int k = 0; k <= n; ++k)
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        std::array<int, 3> c{i, j, k};
+        std::array<double, 3> p;
+        for (std::size_t d = 0; d < 3; ++d) {
+          const double shift = jitter > 0 && c[d] > 0 && c[d] < n ? move(rng) : 0.0;
+          p[d] = lo + h * (c[d] + shift);
+        }
+        points.push_back(p);
+      }
+  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        for (const auto& pm : perms) {
+          // Monotone lattice path from the cube's corner to the opposite one.
+          std::array<int, 3> c{i, j, k};
+          std::array<std::size_t, 4> t{id(i, j, k), 0, 0, 0};
+          for (int s = 0; s < 3; ++s) {
+            ++c[pm[s]];
+            t[std::size_t(s + 1)] = id(c[0], c[1], c[2]);
+          }
+          tets.push_back(t);
+        }
+}
+
+} // namespace benchmark_meshes
+
+#endif // CGAL_EXT_BENCHMARK_KUHN_GRID_H
