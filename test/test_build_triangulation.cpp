@@ -385,9 +385,9 @@ TEST_CASE("tetrahedra sharing a vertex or an edge may touch only there", "[build
 }
 
 // Five tets around one edge, each turning 100 degrees about it: 500 degrees
-// in all. The last one lies inside the second; their boundary facets meet
-// only in the common edge and vertices, so only the wedges about the edge
-// reveal it.
+// in all, the last one inside the first two. The edge test runs before the
+// boundary test (whose facets cross here too), so that a fold is named by
+// its edge.
 TEST_CASE("tetrahedra turning more than once about an edge are an error naming the edge", "[build][bad-input]") {
   std::vector<std::array<double, 3>> p{{0, 0, -1}, {0, 0, 1}};
   const double pi = std::acos(-1.0);
