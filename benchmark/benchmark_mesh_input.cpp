@@ -98,18 +98,21 @@ int main(int argc, char** argv) {
   bool found = false;
   const double facets = median_seconds(repeats, [&] { found |= bool(CGAL_ext::internal::find_boundary_overlap(points, triangles)); });
   const double edges = median_seconds(repeats, [&] { found |= bool(CGAL_ext::internal::find_overlap_around_edge(points, tets)); });
+  const double corners =
+      median_seconds(repeats, [&] { found |= bool(CGAL_ext::internal::find_overlap_around_vertex(points, tets, triangles)); });
   const double vertices =
       median_seconds(repeats, [&] { found |= bool(CGAL_ext::internal::find_vertex_inside_tet(points, tets, boundary_vertices)); });
   if (found) {
     std::fprintf(stderr, "error: an overlap test fired on a valid mesh\n");
     return 1;
   }
-  const double checks = facets + edges + vertices;
+  const double checks = facets + edges + corners + vertices;
   std::printf("mesh: %s: %zu vertices, %zu tets, %zu boundary facets, %zu boundary vertices\n", name.c_str(),
               points.size(), tets.size(), report.boundary_facets, boundary_vertices.size());
   std::printf("build_triangulation_from_tets: %.3f s (%.2f M tets/s), median of %d\n", build, tets.size() / build / 1e6, repeats);
   std::printf("  boundary facets meeting:        %.3f s (%4.1f%% of the build)\n", facets, 100 * facets / build);
   std::printf("  wedges about the edges:         %.3f s (%4.1f%%)\n", edges, 100 * edges / build);
+  std::printf("  corners about boundary vertices: %.3f s (%4.1f%%)\n", corners, 100 * corners / build);
   std::printf("  boundary vertices inside tets:  %.3f s (%4.1f%%)\n", vertices, 100 * vertices / build);
   std::printf("  all overlap tests:              %.3f s (%4.1f%%); the build without them %.3f s (ratio %.2f)\n", checks,
               100 * checks / build, build - checks, build / (build - checks));

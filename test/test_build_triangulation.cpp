@@ -314,7 +314,7 @@ bool contains(const std::string& s, const std::string& part) { return s.find(par
 // Which test rejected a mesh: the shared facet, the boundary, an edge or a vertex.
 std::string overlap_kind(const std::string& error) {
   for (const char* k : {"zero volume", "across their common facet", "where they share no vertex", "about their common edge",
-                        "which it does not use", "duplicates tetrahedron", "appears twice", "is shared by"})
+                        "near their common vertex", "which it does not use", "duplicates tetrahedron", "appears twice", "is shared by"})
     if (contains(error, k)) return k;
   return "other: " + error;
 }
@@ -351,12 +351,13 @@ TEST_CASE("tetrahedra sharing a vertex or an edge may touch only there", "[build
   q[5] = {0.2, 1, 1};
   q[6] = {1, 0.2, 1};
   CHECK(contains(build_error(q, {{0, 1, 2, 3}, {0, 4, 5, 6}}), "where they share no vertex"));
-  // A small tet inside the first one: no boundary facets meet, but its
-  // vertices lie inside the first.
+  // A small tet inside the first one's corner: no boundary facets meet, but
+  // its edges from the common vertex point into the first.
   q[4] = {0.3, 0.3, 0.3};
   q[5] = {0.35, 0.3, 0.3};
   q[6] = {0.3, 0.35, 0.3};
-  CHECK(contains(build_error(q, {{0, 1, 2, 3}, {0, 4, 5, 6}}), "tetrahedron 1: contains vertex 5, which it does not use"));
+  CHECK(contains(build_error(q, {{0, 1, 2, 3}, {0, 4, 5, 6}}),
+                 "tetrahedron 1: overlaps, near their common vertex 1, the tetrahedra around the boundary edge (1, 5)"));
   // Touching along a segment from the common vertex: facet (0,1,2) and a
   // facet of the second tet through the segment (0, (1,1,0)) below it.
   q[4] = {1, 1, 0};
@@ -407,6 +408,35 @@ TEST_CASE("tetrahedra turning more than once about an edge are an error naming t
   CHECK(contains(build_error(p, t), "about their common edge (1, 2)"));
   t.pop_back();
   CHECK(build_error(p, t) == "accepted");
+}
+
+// Found by fuzz_medit_mesh (8.4 million runs): a tetrahedron added inside
+// a block whose vertices are all boundary vertices of the block. Its facets
+// meet the block's boundary only at those shared vertices, its edges are no
+// edges of the block, and no vertex lies inside a tetrahedron that does not
+// use it: only the corners around a shared vertex reveal the overlap.
+TEST_CASE("a tetrahedron inside a block touching it at boundary vertices is an error", "[build][bad-input]") {
+  IO::Medit_mesh m = IO::read_medit_mesh(data_dir + "/cube_kuhn_2.mesh");
+  // The face centres (1, 0, 1), (1, 1, 0), (0, 1, 1) and the corner (2, 2, 2).
+  m.tetrahedra.push_back({10, 12, 4, 26});
+  const std::string e = build_error(m.vertices, m.tetrahedra);
+  INFO(e);
+  CHECK(contains(e, "m.mesh: tetrahedron "));
+  CHECK(contains(e, "overlaps, near their common vertex "));
+  CHECK(contains(e, "which it does not use (parts of the mesh that meet at a vertex overlap there)"));
+  // The fuzzer's file: a distorted block of 99 tets and tetrahedron 98
+  // spanning it from a corner to three points on its faces.
+  const std::string path = data_dir + "/fuzz/tet_inside_block_at_boundary_vertices.mesh";
+  Tet_mesh_triangulation_3<> tr;
+  try {
+    IO::read_tet_mesh(path, tr);
+    FAIL("accepted");
+  } catch (const Input_error& error) {
+    const std::string what = error.what();
+    INFO(what);
+    CHECK(contains(what, "tet_inside_block_at_boundary_vertices.mesh"));
+    CHECK(contains(what, "overlaps, near their common vertex "));
+  }
 }
 
 // A small cube inside a cell of a larger one, with no boundary contact:
@@ -523,4 +553,31 @@ TEST_CASE("a changed vertex index: no accepted mesh covers a point twice", "[bui
   for (const auto& [k, n] : outcomes) UNSCOPED_INFO(k << ": " << n);
   CHECK(outcomes["accepted"] > 0);
   CHECK(outcomes["about their common edge"] > 100);
+}
+
+// Every tetrahedron added on four boundary vertices of a filled cube lies in
+// the cube, so it overlaps the mesh (or has zero volume): never accepted,
+// whatever the tests that find it.
+TEST_CASE("a tetrahedron added on boundary vertices of a block is never accepted", "[build][bad-input][randomized]") {
+  const auto grid = testing::kuhn_grid(4, 4, 4, 1.0);
+  std::vector<std::size_t> boundary;
+  for (std::size_t v = 0; v < grid.points.size(); ++v)
+    for (double x : grid.points[v])
+      if (x == 0 || x == 4) {
+        boundary.push_back(v);
+        break;
+      }
+  std::mt19937_64 rng(11);
+  std::uniform_int_distribution<std::size_t> pick(0, boundary.size() - 1);
+  std::map<std::string, int> outcomes;
+  for (int trial = 0; trial < 500; ++trial) {
+    auto tets = grid.tets;
+    tets.push_back({boundary[pick(rng)], boundary[pick(rng)], boundary[pick(rng)], boundary[pick(rng)]});
+    const std::string e = build_error(grid.points, tets);
+    INFO("trial " << trial << ": " << e);
+    REQUIRE(e != "accepted");
+    ++outcomes[overlap_kind(e)];
+  }
+  for (const auto& [k, n] : outcomes) UNSCOPED_INFO(k << ": " << n);
+  CHECK(outcomes["near their common vertex"] > 10);
 }

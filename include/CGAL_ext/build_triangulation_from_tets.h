@@ -101,7 +101,8 @@ struct Facet_record {
 ///         same side of their common facet, parts of the mesh that overlap or
 ///         touch where they share no vertex (two boundary facets that meet
 ///         elsewhere than in their common vertices, tetrahedra that turn more
-///         than once about their common edge, or a boundary vertex inside a
+///         than once about their common edge, a boundary edge inside the
+///         corner of a tetrahedron at its end, or a boundary vertex inside a
 ///         tetrahedron that does not use it; all decided exactly, see
 ///         internal/Tet_mesh_overlap.h), or an empty tet list.
 template <class Geom_traits>
@@ -268,6 +269,14 @@ Tet_mesh_build_report build_triangulation_from_tets(
                           " meet elsewhere than in their common vertices (parts of a mesh must share the vertices where "
                           "they touch)");
   }
+  // ... the corners around a boundary vertex overlapping, ...
+  if (const auto hit = internal::find_overlap_around_vertex(points, oriented, triangles))
+    throw Input_error(src.file, internal::tet_line(src, hit->tet), internal::tet_name(src, hit->tet),
+                      "overlaps, near their common vertex " + std::to_string(hit->vertex + 1) +
+                          ", the tetrahedra around the boundary edge (" + std::to_string(hit->vertex + 1) + ", " +
+                          std::to_string(hit->edge_end + 1) + "): its corner at vertex " + std::to_string(hit->vertex + 1) +
+                          " contains that edge, which it does not use (parts of the mesh that meet at a vertex overlap "
+                          "there)");
   // ... and a part inside another one, with no boundary contact.
   {
     std::vector<std::size_t> boundary_vertices;

@@ -70,6 +70,53 @@ bool triangles_overlap(const std::vector<std::array<double, 3>>& points, const s
   }
 }
 
+// The tetrahedra around each vertex, in increasing order (compressed rows:
+// those of v are around[first[v]] to around[first[v + 1] - 1]); only around
+// the vertices v with wanted[v], if `wanted` is not empty.
+struct Stars {
+  std::vector<std::size_t> first, around;
+  Stars(std::size_t nv, const std::vector<std::array<std::size_t, 4>>& tets, const std::vector<char>& wanted = {})
+      : first(nv + 1, 0) {
+    auto in = [&](std::size_t v) { return wanted.empty() || wanted[v]; };
+    for (const auto& t : tets)
+      for (std::size_t v : t) first[v + 1] += in(v);
+    std::partial_sum(first.begin(), first.end(), first.begin());
+    around.resize(first[nv]);
+    std::vector<std::size_t> next(first.begin(), first.end() - 1);
+    for (std::size_t t = 0; t < tets.size(); ++t)
+      for (std::size_t v : tets[t])
+        if (in(v)) around[next[v]++] = t;
+  }
+};
+
+// Whether x lies on the inner side, or on the plane, of each facet j of the
+// positive tetrahedron q whose bit is set in `facets` (facet j is opposite
+// q[j]). An interval pass comes first: one facet with x certainly on its
+// outer side settles it, before x on the plane of another facet (common on
+// planar boundaries) sends the filtered predicate to exact arithmetic.
+bool inside_facets(const std::array<Point, 4>& q, const Point& x, unsigned facets) {
+  auto with_x = [&](std::size_t j) {
+    std::array<Point, 4> r = q;
+    r[j] = x;
+    return r;
+  };
+  {
+    CGAL::Protect_FPU_rounding<true> rounding;
+    auto I = [](const Point& y) { return IK::Point_3(y.x(), y.y(), y.z()); };
+    for (std::size_t j = 0; j < 4; ++j) {
+      if (!(facets >> j & 1u)) continue;
+      const auto r = with_x(j);
+      if (CGAL::certainly(CGAL::orientation(I(r[0]), I(r[1]), I(r[2]), I(r[3])) == CGAL::NEGATIVE)) return false;
+    }
+  }
+  for (std::size_t j = 0; j < 4; ++j) {
+    if (!(facets >> j & 1u)) continue;
+    const auto r = with_x(j);
+    if (CGAL::orientation(r[0], r[1], r[2], r[3]) == CGAL::NEGATIVE) return false;
+  }
+  return true;
+}
+
 } // namespace
 
 std::optional<std::array<std::size_t, 2>>
@@ -95,18 +142,10 @@ find_boundary_overlap(const std::vector<std::array<double, 3>>& points,
 
 std::optional<Edge_overlap> find_overlap_around_edge(const std::vector<std::array<double, 3>>& points,
                                                      const std::vector<std::array<std::size_t, 4>>& tets) {
-  // Tets around each vertex (compressed rows).
   const std::size_t nv = points.size();
-  std::vector<std::size_t> first(nv + 1, 0), around;
-  for (const auto& t : tets)
-    for (std::size_t v : t) ++first[v + 1];
-  std::partial_sum(first.begin(), first.end(), first.begin());
-  around.resize(first[nv]);
-  {
-    std::vector<std::size_t> next(first.begin(), first.end() - 1);
-    for (std::size_t t = 0; t < tets.size(); ++t)
-      for (std::size_t v : tets[t]) around[next[v]++] = t;
-  }
+  const Stars stars(nv, tets);
+  const auto& first = stars.first;
+  const auto& around = stars.around;
   // For the edge (i, j) of a positive tet, the vertices (k, l) such that
   // (i, j, k, l) is an even permutation: the wedge turns from k to l.
   static constexpr int wedge[4][4][2] = {{{0, 0}, {2, 3}, {3, 1}, {1, 2}},
@@ -268,28 +307,9 @@ std::optional<Vertex_in_tet> find_vertex_inside_tet(const std::vector<std::array
     if (std::find(c.begin(), c.end(), v) != c.end()) return;
     const Point p = point_of(points, v);
     if (!CGAL::do_overlap(p.bbox(), box)) return;
-    const std::array<Point, 4> q{point_of(points, c[0]), point_of(points, c[1]), point_of(points, c[2]),
-                                 point_of(points, c[3])};
-    auto with_vertex = [&](std::size_t j) {
-      std::array<Point, 4> r = q;
-      r[j] = p;
-      return r;
-    };
-    // First an interval pass: one facet with p certainly on its outer side
-    // settles it, before a vertex on the plane of another facet (common on
-    // planar boundaries) sends the filtered predicate to exact arithmetic.
-    {
-      CGAL::Protect_FPU_rounding<true> rounding;
-      auto I = [](const Point& x) { return IK::Point_3(x.x(), x.y(), x.z()); };
-      for (std::size_t j = 0; j < 4; ++j) {
-        const auto r = with_vertex(j);
-        if (CGAL::certainly(CGAL::orientation(I(r[0]), I(r[1]), I(r[2]), I(r[3])) == CGAL::NEGATIVE)) return;
-      }
-    }
-    for (std::size_t j = 0; j < 4; ++j) {
-      const auto r = with_vertex(j);
-      if (CGAL::orientation(r[0], r[1], r[2], r[3]) == CGAL::NEGATIVE) return;
-    }
+    if (!inside_facets({point_of(points, c[0]), point_of(points, c[1]), point_of(points, c[2]), point_of(points, c[3])},
+                       p, 0xFu))
+      return;
     found = Vertex_in_tet{v, t};
   };
   tbb::parallel_for(
@@ -320,6 +340,70 @@ std::optional<Vertex_in_tet> find_vertex_inside_tet(const std::vector<std::array
       found = hit;
   });
   return found;
+}
+
+std::optional<Vertex_overlap> find_overlap_around_vertex(const std::vector<std::array<double, 3>>& points,
+                                                         const std::vector<std::array<std::size_t, 4>>& tets,
+                                                         const std::vector<std::array<std::size_t, 3>>& triangles) {
+  std::vector<char> on_boundary(points.size(), 0);
+  for (const auto& t : triangles)
+    for (std::size_t v : t) on_boundary[v] = 1;
+  const Stars stars(points.size(), tets, on_boundary);
+  // The boundary edges (p, q), both ways, sorted.
+  std::vector<std::array<std::size_t, 2>> edges;
+  edges.reserve(6 * triangles.size());
+  for (const auto& t : triangles)
+    for (std::size_t k = 0; k < 3; ++k) {
+      edges.push_back({t[k], t[(k + 1) % 3]});
+      edges.push_back({t[(k + 1) % 3], t[k]});
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<std::size_t> groups; // where each vertex's edges start
+  for (std::size_t e = 0; e < edges.size(); ++e)
+    if (e == 0 || edges[e][0] != edges[e - 1][0]) groups.push_back(e);
+  groups.push_back(edges.size());
+
+  // The first (q, tet) at vertex p, both in increasing order.
+  auto at_vertex = [&](std::size_t g) -> std::optional<Vertex_overlap> {
+    const std::size_t p = edges[groups[g]][0];
+    for (std::size_t e = groups[g]; e < groups[g + 1]; ++e) {
+      const std::size_t q = edges[e][1];
+      const Point pq = point_of(points, q);
+      for (std::size_t k = stars.first[p]; k < stars.first[p + 1]; ++k) {
+        const std::size_t t = stars.around[k];
+        const auto& c = tets[t];
+        if (std::find(c.begin(), c.end(), q) != c.end()) continue;
+        const std::size_t i = std::size_t(std::find(c.begin(), c.end(), p) - c.begin());
+        // The corner at p is bounded by the three facets through p.
+        if (inside_facets({point_of(points, c[0]), point_of(points, c[1]), point_of(points, c[2]), point_of(points, c[3])},
+                          pq, 0xFu & ~(1u << i)))
+          return Vertex_overlap{p, q, t};
+      }
+    }
+    return std::nullopt;
+  };
+  // In parallel over the vertices; the overlap at the smallest vertex is
+  // reported, whatever the thread count.
+  const std::size_t ng = groups.size() - 1;
+  std::atomic<std::size_t> first_found{ng};
+  tbb::combinable<std::optional<std::pair<std::size_t, Vertex_overlap>>> found;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ng, 256), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t g = range.begin(); g < range.end() && g < first_found.load(); ++g)
+      if (auto hit = at_vertex(g)) {
+        auto& mine = found.local();
+        if (!mine || g < mine->first) mine = std::make_pair(g, *hit);
+        std::size_t seen = first_found.load();
+        while (g < seen && !first_found.compare_exchange_weak(seen, g)) {}
+        return;
+      }
+  });
+  std::optional<std::pair<std::size_t, Vertex_overlap>> result;
+  found.combine_each([&](const std::optional<std::pair<std::size_t, Vertex_overlap>>& hit) {
+    if (hit && (!result || hit->first < result->first)) result = hit;
+  });
+  if (!result) return std::nullopt;
+  return result->second;
 }
 
 } // namespace internal

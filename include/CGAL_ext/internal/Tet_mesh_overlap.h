@@ -10,18 +10,29 @@
 /// has checked that every tetrahedron is positive and that the two cells of
 /// each shared facet lie on opposite sides of it.
 ///
-/// They look for the three signs of a mesh that is not embedded: its
+/// They look for the four signs of a mesh that is not embedded: its
 /// boundary crossing or touching itself (`find_boundary_overlap()`), the
 /// cells around an edge turning about it more than once
-/// (`find_overlap_around_edge()`), and a part of the mesh lying inside
-/// another one with no boundary contact (`find_vertex_inside_tet()`). Once
-/// the boundary meets itself only where it shares vertices, every point of a
-/// region it encloses is covered by the same number of tetrahedra (the
-/// degree argument); a region covered twice then has boundary facets inside
-/// other tetrahedra, whose vertices the last test finds, unless each of them
-/// lies only in tetrahedra that use it (a fold about a vertex that turns
-/// about no edge). That case is not ruled out by a proof; the randomized
-/// tests and the fuzzer have not produced it.
+/// (`find_overlap_around_edge()`), the corners of the cells around a
+/// boundary vertex overlapping (`find_overlap_around_vertex()`), and a part
+/// of the mesh lying inside another one with no boundary contact
+/// (`find_vertex_inside_tet()` on the boundary vertices). Together they are
+/// complete: a mesh that passes all four covers no point twice.
+///
+/// Why (the degree argument). A generic point x is covered by deg(x)
+/// tetrahedra; with every tetrahedron positive and the two cells of each
+/// shared facet on opposite sides, deg changes only across boundary facets,
+/// by one. Suppose deg = 2 somewhere. Some boundary facet F, of tetrahedron
+/// T, has deg = 2 on its inner side; as no boundary facet crosses F, this
+/// holds along all of F. Take a vertex p of F. If p lies in a tetrahedron
+/// that does not use it, the fourth test finds it. Otherwise the second cover
+/// near p comes from a tetrahedron T' that uses p, and in the sphere of
+/// directions at p the corners of T and T' overlap next to the arc of F. The
+/// same argument on that sphere (its boundary arcs are the boundary facets
+/// through p, which do not cross either) leads to an end of the arc, the
+/// direction of a boundary edge (p, q): either a corner at p of a
+/// tetrahedron that does not use q contains that direction (the third test),
+/// or two tetrahedra around the edge (p, q) overlap next to it (the second).
 
 #include <array>
 #include <cstddef>
@@ -78,6 +89,36 @@ struct Edge_overlap {
 std::optional<Edge_overlap> find_overlap_around_edge(const std::vector<std::array<double, 3>>& points,
                                                      const std::vector<std::array<std::size_t, 4>>& tets);
 
+/// A boundary edge whose direction from one end lies in the corner at that
+/// end of a tetrahedron that does not use the edge.
+struct Vertex_overlap {
+  /// The vertex p where the corners overlap, as an index into the points.
+  std::size_t vertex;
+  /// The other end q of the boundary edge (p, q).
+  std::size_t edge_end;
+  /// The tetrahedron whose corner at p contains the direction of q.
+  std::size_t tet;
+};
+
+/// The smallest (p, q, tetrahedron) such that (p, q) is an edge of a
+/// boundary triangle and the tetrahedron uses p but not q and its closed
+/// corner at p (the cone of its three facets through p) contains q, decided
+/// with exact orientation predicates; none otherwise.
+///
+/// Around an embedded boundary vertex the corners of the tetrahedra tile
+/// the directions from p without overlap, and the direction of a boundary
+/// edge is a vertex of that tiling, in no other corner. This finds parts of
+/// a mesh that share a vertex and overlap around it without sharing an edge
+/// (a fold about a vertex, or a tetrahedron inside a corner of a block that
+/// touches it only at its vertices), which neither the boundary facets nor
+/// the edges reveal.
+/// \param points the vertex coordinates
+/// \param tets positively oriented tetrahedra, as vertex indices into `points`
+/// \param triangles the boundary facets, as vertex indices into `points`
+std::optional<Vertex_overlap> find_overlap_around_vertex(const std::vector<std::array<double, 3>>& points,
+                                                         const std::vector<std::array<std::size_t, 4>>& tets,
+                                                         const std::vector<std::array<std::size_t, 3>>& triangles);
+
 /// A vertex inside, or on, a tetrahedron that does not use it.
 struct Vertex_in_tet {
   /// The vertex, as an index into the points.
@@ -92,8 +133,8 @@ struct Vertex_in_tet {
 ///
 /// With the boundary vertices as `vertices`, this finds a part of the mesh
 /// nested inside another part without touching its boundary (a second
-/// component inside a cell of the first, or two parts around one shared
-/// vertex), which no boundary facet and no edge reveals.
+/// component inside a cell of the first), which no boundary facet, edge or
+/// vertex reveals.
 /// \param points the vertex coordinates
 /// \param tets positively oriented tetrahedra, as vertex indices into `points`
 /// \param vertices the vertices to test, as indices into `points`
