@@ -444,6 +444,10 @@ TEST_CASE("matchings compare frames after the transport from the first tetrahedr
   REQUIRE(expected >= 0);
   CHECK(matchings.index(bi, bf) == expected);
   CHECK(matchings.index(bj, fj) == Frame_field_matchings_3<Frames>::inverse_index(expected));
+  // Frames carried exactly across the face: no angle between them, from
+  // either side (100 degrees with T^T in place of T).
+  CHECK(matchings.face_angle_deg(*s->ff, bi, bf) < 1e-6);
+  CHECK(matchings.face_angle_deg(*s->ff, bj, fj) < 1e-6);
   // The .perm line of that face says the same, vector by vector.
   const IO::Perm_file perm = matchings.perm_file(*s->ff);
   const auto line = std::find_if(perm.faces.begin(), perm.faces.end(), [&](const IO::Perm_face& f) {
@@ -456,6 +460,45 @@ TEST_CASE("matchings compare frames after the transport from the first tetrahedr
     CHECK(line->p == Frame_field_matchings_3<Frames>::signed_permutation(bi < bj ? expected
                                                                                  : Frame_field_matchings_3<Frames>::inverse_index(expected)));
   }
+}
+
+TEST_CASE("face angles measure the matched rotation between neighbouring frames", "[singularities][perm]") {
+  // One tetrahedron turned by 100 degrees about a frame axis in a constant
+  // field: matched by a quarter turn, 10 degrees apart from each neighbour;
+  // 0 on every other face and on the boundary.
+  const Eigen::Matrix3d R0 = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d turned = R0 * Eigen::AngleAxisd(100 * M_PI / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  auto s = field_on(testing::kuhn_grid(3, 3, 3, 1.0), [&](const Eigen::Vector3d&) { return R0; });
+  std::size_t k = 0; // an interior tetrahedron
+  while (k < s->ff->size() && [&] {
+    for (int f = 0; f < 4; ++f)
+      if (s->ff->neighbor(k, f) < 0) return true;
+    return false;
+  }())
+    ++k;
+  REQUIRE(k < s->ff->size());
+  s->ff->set_rotations([&](std::size_t i) { return i == k ? turned : R0; });
+  const Frame_field_matchings_3<Frames> matchings(*s->ff);
+  std::size_t faces = 0, turned_faces = 0;
+  for (std::size_t i = 0; i < s->ff->size(); ++i)
+    for (int f = 0; f < 4; ++f) {
+      const double a = matchings.face_angle_deg(*s->ff, i, f);
+      const std::int64_t j = s->ff->neighbor(i, f);
+      INFO("tet " << i << " facet " << f << ": " << a << " deg");
+      if (i == k || j == std::int64_t(k)) {
+        CHECK(a == Approx(10).margin(1e-9));
+        ++turned_faces;
+      } else {
+        CHECK(a < 1e-9);
+      }
+      if (j >= 0) {
+        const int fj = s->ff->cell(std::size_t(j))->index(s->ff->cell(i));
+        CHECK(matchings.face_angle_deg(*s->ff, std::size_t(j), fj) == Approx(a).margin(1e-9));
+      }
+      ++faces;
+    }
+  CHECK(turned_faces == 8); // its 4 faces, seen from both sides
+  CHECK(faces == 4 * s->ff->size());
 }
 
 TEST_CASE("the .perm file alone gives back exactly the singular edges", "[singularities][perm]") {

@@ -14,6 +14,7 @@
 #include <CGAL_ext/Octahedral_frame.h>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <array>
 #include <cstddef>
@@ -86,6 +87,23 @@ public:
   /// The rotation `R_i` the matchings were computed with (`ff.rotation(i)`).
   /// \param i a tetrahedron index
   const Eigen::Matrix3d& rotation(std::size_t i) const { return rotation_[i]; }
+
+  /// The angle, in degrees, between the frame of tetrahedron `i` carried
+  /// into its neighbour `j` across local facet `f` and the matched frame of
+  /// `j`: the rotation angle of `(R_j G)^T T(i->j) R_i`, in [0, 180]; 0 on
+  /// the boundary. Small on most faces of a good field, which concentrates
+  /// its rotation near the singular curves; the same from either side.
+  /// \param ff the frame field the matchings were computed from
+  /// \param i a tetrahedron index
+  /// \param f a local facet index in 0..3
+  double face_angle_deg(const Frame_field& ff, std::size_t i, int f) const {
+    const std::int64_t j = ff.neighbor(i, f);
+    if (j < 0) return 0;
+    const Eigen::Matrix3d T = ff.transport_into(std::size_t(j), mirror_facet(ff, i, f)); // T(i->j)
+    const Eigen::Matrix3d D = (rotation_[std::size_t(j)] * matching(i, f)).transpose() * T * rotation_[i];
+    // Through the quaternion: accurate near 0, unlike acos((trace - 1) / 2).
+    return Eigen::AngleAxisd(D).angle() * 180 / M_PI;
+  }
 
   /// The matchings as CubeCover's `.perm` file holds them (see
   /// `IO::write_perm()`): one face per interior face whose matching is not
