@@ -71,9 +71,10 @@ struct Singular_edge {
   /// 3 for `plus_quarter`, 5 for `minus_quarter`, 0 otherwise.
   int valence = 0;
   /// The index in `octahedral_group()` of the product of the matchings
-  /// around the loop that starts in the first tetrahedron of CGAL's
-  /// circulation about the edge (the product is conjugate to it from any
-  /// other start).
+  /// around the loop that starts in the tetrahedron of smallest index around
+  /// the edge and turns positively about it, from `vertices[0]` to
+  /// `vertices[1]` (the product is conjugate to it from any other start, and
+  /// inverted the other way round).
   int monodromy = 0;
   /// The number of tetrahedra around the edge.
   int loop_size = 0;
@@ -155,7 +156,9 @@ constexpr int singular_curve_direction_span = 2;
 /// Finds and types the singular edges of a frame field from its face matchings.
 ///
 /// For each interior edge (no incident cell outside the domain) with cells
-/// `c_0, ..., c_{n-1}` around it in CGAL's circulation order, the holonomy is
+/// `c_0, ..., c_{n-1}` around it, `c_0` the one of smallest index and the
+/// loop turning positively about the edge from its smaller vertex index to
+/// the larger, the holonomy is
 /// the exact product `P = G_{n-1} ... G_0` of the face matchings `G_k` from
 /// `c_k` to `c_{k+1}` (`Frame_field_matchings_3`, transports included). The
 /// edge is regular iff `P = I`. Otherwise `P` is a rotation by 90, 120 or 180
@@ -180,7 +183,12 @@ constexpr int singular_curve_direction_span = 2;
 ///
 /// A different starting cell conjugates `P` by the matchings and moves the
 /// axis with the frames; a reversed loop inverts `P` and reverses `t`; so
-/// the type and `turn_deg` do not depend on either.
+/// the type and `turn_deg` do not depend on either, except through the
+/// nearest frame axis to `A d`: the frames of the cells around an edge
+/// differ by small rotations, and a curve running about halfway between two
+/// axes may be nearest to different ones in different cells. Hence the
+/// fixed `c_0`, so that the type depends on the field alone (not on how
+/// CGAL's iterator represents the edge, which depends on cell addresses).
 ///
 /// The edges are returned sorted by their vertex indices (deterministic).
 ///
@@ -221,19 +229,38 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_fie
       const Cell_handle a = loop[k], b = loop[(k + 1) % n];
       P = matchings.matching(std::size_t(ff.index(a)), a->index(b)) * P;
     }
-    const int monodromy = octahedral_group_index(P, 0);
-    if (monodromy == 0) continue;
+    if (octahedral_group_index(P, 0) == 0) continue; // regular from any start
 
-    const auto u = e->first->vertex(e->second), v = e->first->vertex(e->third);
+    // A canonical loop, from the tetrahedron of smallest index, turning
+    // positively about u -> v (u the smaller vertex index): CGAL's edge
+    // iterator picks the edge's cell by address, and the typing below
+    // compares the curve with the frame of the first tetrahedron, so that
+    // an edge whose curve runs between two frame axes would otherwise be
+    // typed by the heap layout (found on blobby: run after another model in
+    // one process, 2 of 505 singular edges changed type).
+    std::rotate(loop.begin(),
+                std::min_element(loop.begin(), loop.end(),
+                                 [&](Cell_handle a, Cell_handle b) { return ff.index(a) < ff.index(b); }),
+                loop.end());
+    auto u = e->first->vertex(e->second), v = e->first->vertex(e->third);
+    if (ff.vertex_index(u) > ff.vertex_index(v)) std::swap(u, v);
     const Eigen::Vector3d pu = internal::to_eigen_vector(u->point()), pv = internal::to_eigen_vector(v->point());
     double turn = 0; // orientation of the circulation about u -> v
     for (int k = 0; k < n; ++k) {
       const std::size_t ia = std::size_t(ff.index(loop[k])), ib = std::size_t(ff.index(loop[(k + 1) % n]));
       turn += (ff.centroid(ia) - pu).cross(ff.centroid(ib) - pu).dot(pv - pu);
     }
+    if (turn < 0) std::reverse(loop.begin() + 1, loop.end());
+    P = Eigen::Matrix3d::Identity();
+    for (int k = 0; k < n; ++k) {
+      const Cell_handle a = loop[k], b = loop[(k + 1) % n];
+      P = matchings.matching(std::size_t(ff.index(a)), a->index(b)) * P;
+    }
+    const int monodromy = octahedral_group_index(P, 0);
+
     Found f;
     f.P = P;
-    f.t = (turn >= 0 ? 1.0 : -1.0) * (pv - pu);
+    f.t = pv - pu;
     const Eigen::Vector3d mid = 0.5 * (pu + pv);
     const Eigen::Matrix3d A = field.A_at(loop[0], typename Frame_field::Point_3(mid(0), mid(1), mid(2)));
     const Eigen::Matrix3d& R0 = matchings.rotation(std::size_t(ff.index(loop[0])));
@@ -241,7 +268,6 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_fie
     Singular_edge& s = f.edge;
     s.vertices = {ff.vertex_index(u), ff.vertex_index(v)};
     f.p = {pu, pv};
-    if (s.vertices[0] > s.vertices[1]) std::swap(s.vertices[0], s.vertices[1]), std::swap(f.p[0], f.p[1]);
     s.monodromy = monodromy;
     s.loop_size = n;
     s.valence = 0;
