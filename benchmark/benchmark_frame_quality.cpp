@@ -105,17 +105,9 @@ Quality measure(const std::string& input, double size_fraction) {
   q.curves = graph.curves.size();
   q.nodes = graph.nodes.size();
   q.interior_ends = graph.interior_ends;
-  std::vector<double> angles; // each interior face once
-  for (std::size_t i = 0; i < ff.size(); ++i)
-    for (int f = 0; f < 4; ++f)
-      if (ff.neighbor(i, f) > std::int64_t(i)) angles.push_back(matchings.face_angle_deg(ff, i, f));
-  if (!angles.empty()) {
-    double sum = 0;
-    for (double a : angles) sum += a;
-    q.angle_mean = sum / double(angles.size());
-    std::nth_element(angles.begin(), angles.begin() + std::ptrdiff_t(angles.size() / 2), angles.end());
-    q.angle_median = angles[angles.size() / 2];
-  }
+  const CGAL_ext::Face_angle_statistics angles = matchings.face_angle_statistics(ff);
+  q.angle_mean = angles.mean_deg;
+  q.angle_median = angles.median_deg;
   q.energy_per_weight = st.smoothness_energy / st.total_face_weight;
   q.align_mean = st.boundary_error_mean_deg;
   q.align_max = st.boundary_error_max_deg;

@@ -88,6 +88,7 @@ TEST_CASE("generate writes the six files, and the identity metric on a cube give
   CHECK(number_after(report, "curves") == 0);
   CHECK(number_after(report, "smoothness_energy") < 1e-9);
   CHECK(report.find("\"boundary_alignment_error_deg\"") != std::string::npos);
+  CHECK(number_after(report, "face_angle_deg\": {\"mean") < 1e-6); // a constant field
   CHECK(report.find("\"g_orthonormality_max_error\"") != std::string::npos);
   CHECK(report.find("\"stage_seconds\"") != std::string::npos);
 
@@ -406,7 +407,8 @@ TEST_CASE("generate does not depend on the unit of length and refuses sizes beyo
   for (int e : {150, -150}) {
     INFO("scale 2^" << e);
     CHECK(number_after(report[e], "hex_size") == Approx(std::ldexp(number_after(report[0], "hex_size"), e)).epsilon(1e-9));
-    for (const char* key : {"smoothness_energy", "projected_energy", "expected_hexes", "singular_edges", "mean", "max",
+    for (const char* key : {"smoothness_energy", "projected_energy", "expected_hexes", "singular_edges", "mean", "median", "max",
+                            "boundary_alignment_error_deg\": {\"mean",
                             "g_orthonormality_max_error", "max_transport_angle_deg", "refinement_iterations"})
       CHECK(number_after(report[e], key) == number_after(report[0], key));
   }

@@ -16,12 +16,23 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
 namespace CGAL_ext {
+
+/// \ingroup PkgCGALExtFrames
+/// Angles between matched neighbouring frames over the interior faces (see
+/// `Frame_field_matchings_3::face_angle_statistics()`).
+struct Face_angle_statistics {
+  /// The number of interior faces.
+  std::size_t faces = 0;
+  /// The mean, median and largest angle, in degrees.
+  double mean_deg = 0, median_deg = 0, max_deg = 0;
+};
 
 /// \ingroup PkgCGALExtFrames
 /// The face matchings of a frame field, computed once.
@@ -103,6 +114,28 @@ public:
     const Eigen::Matrix3d D = (rotation_[std::size_t(j)] * matching(i, f)).transpose() * T * rotation_[i];
     // Through the quaternion: accurate near 0, unlike acos((trace - 1) / 2).
     return Eigen::AngleAxisd(D).angle() * 180 / M_PI;
+  }
+
+  /// The mean, median and largest of `face_angle_deg()` over the interior
+  /// faces (each face once), and their number; all 0 without interior faces.
+  /// A field that concentrates its rotation near its singular curves has a
+  /// median far below its mean.
+  /// \param ff the frame field the matchings were computed from
+  Face_angle_statistics face_angle_statistics(const Frame_field& ff) const {
+    std::vector<double> angles;
+    for (std::size_t i = 0; i < size(); ++i)
+      for (int f = 0; f < 4; ++f)
+        if (ff.neighbor(i, f) > std::int64_t(i)) angles.push_back(face_angle_deg(ff, i, f));
+    Face_angle_statistics out;
+    out.faces = angles.size();
+    if (angles.empty()) return out;
+    double sum = 0;
+    for (double a : angles) sum += a, out.max_deg = std::max(out.max_deg, a);
+    out.mean_deg = sum / double(angles.size());
+    const auto middle = angles.begin() + std::ptrdiff_t(angles.size() / 2);
+    std::nth_element(angles.begin(), middle, angles.end());
+    out.median_deg = *middle;
+    return out;
   }
 
   /// The matchings as CubeCover's `.perm` file holds them (see

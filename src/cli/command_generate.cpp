@@ -52,7 +52,8 @@ const char* generate_help =
     "  singularities.vtu   singular edges as lines: type, index, valence, meshable,\n"
     "                      turn and axis angles, curve; nodes as point data\n"
     "  report.json         counts, hex size, expected hexes, singular curves and\n"
-    "                      nodes, non-meshable edges, energies, alignment, timings\n\n"
+    "                      nodes, non-meshable edges, energies, face angles,\n"
+    "                      alignment, timings\n\n"
     "INPUT is a Medit .mesh tet mesh, a closed surface (.off .obj .stl .ply) meshed\n"
     "with CGAL Mesh_3 at size --size, or builtin:NAME (ball, torus, box_with_hole, ...).\n\n"
     "Metric (default: the identity) and hex size. Unit length in the metric is one\n"
@@ -505,6 +506,7 @@ int command_generate(const std::vector<std::string>& args) {
   lap();
   const Matchings matchings(ff);
   const std::vector<Singular_edge> sing = singular_edges(ff, matchings);
+  const Face_angle_statistics angles = matchings.face_angle_statistics(ff);
   const Singularity_graph graph = singularity_graph(ff, sing);
   const Singularity_counts counts(sing);
   const std::size_t non_meshable = counts.non_meshable;
@@ -537,6 +539,8 @@ int command_generate(const std::vector<std::string>& args) {
      << "  \"smoothness_energy\": " << number(st.smoothness_energy) << ",\n"
      << "  \"smoothness_energy_per_weight\": " << number(st.smoothness_energy / st.total_face_weight) << ",\n"
      << "  \"projected_energy\": " << number(st.projected_energy) << ",\n"
+     << "  \"face_angle_deg\": {\"mean\": " << number(angles.mean_deg) << ", \"median\": " << number(angles.median_deg)
+     << ", \"max\": " << number(angles.max_deg) << "},\n"
      << "  \"boundary_alignment_error_deg\": {\"mean\": " << number(st.boundary_error_mean_deg)
      << ", \"max\": " << number(st.boundary_error_max_deg) << "},\n"
      << "  \"g_orthonormality_max_error\": " << number(st.max_orthonormality_error) << ",\n"
@@ -564,13 +568,15 @@ int command_generate(const std::vector<std::string>& args) {
     if (n) types += (types.empty() ? "" : ", ") + name + ": " + std::to_string(n);
   std::fprintf(stderr,
                "\n  %-32s %zu (%zu vertices)\n  %-32s %s\n  %-32s %s\n  %-32s %.0f\n"
-               "  %-32s %.6g (per unit weight %.3g)\n  %-32s mean %.3g, max %.3g\n  %-32s %.3g\n"
+               "  %-32s %.6g (per unit weight %.3g)\n  %-32s mean %.3g, median %.3g\n  %-32s mean %.3g, max %.3g\n"
+               "  %-32s %.3g\n"
                "  %-32s %zu%s%s%s\n  %-32s %zu (%zu closed), nodes %zu (junctions %zu, boundary ends %zu, interior ends %zu)\n"
                "  %-32s %zu\n",
                "tetrahedra", nt, mesh.vertices.size(), "metric", metric_name.c_str(), "hex size",
                hex.scaled ? (number(hex.h) + " (" + hex.rule + ")").c_str() : "the metric's unit length",
                "expected hexahedra", expected_hexes, "smoothness energy", st.smoothness_energy,
-               st.smoothness_energy / st.total_face_weight, "boundary alignment error (deg)", st.boundary_error_mean_deg,
+               st.smoothness_energy / st.total_face_weight, "face angle (deg)", angles.mean_deg, angles.median_deg,
+               "boundary alignment error (deg)", st.boundary_error_mean_deg,
                st.boundary_error_max_deg, "max |F^T g F - I|", st.max_orthonormality_error, "singular edges", sing.size(),
                types.empty() ? "" : " (", types.c_str(), types.empty() ? "" : ")", "singular curves", graph.curves.size(),
                graph.closed_curves, graph.nodes.size(), graph.junctions, graph.boundary_ends, graph.interior_ends,
