@@ -270,13 +270,21 @@ Tet_mesh_build_report build_triangulation_from_tets(
                           "they touch)");
   }
   // ... the corners around a boundary vertex overlapping, ...
-  if (const auto hit = internal::find_overlap_around_vertex(points, oriented, triangles))
-    throw Input_error(src.file, internal::tet_line(src, hit->tet), internal::tet_name(src, hit->tet),
-                      "overlaps, near their common vertex " + std::to_string(hit->vertex + 1) +
-                          ", the tetrahedra around the boundary edge (" + std::to_string(hit->vertex + 1) + ", " +
-                          std::to_string(hit->edge_end + 1) + "): its corner at vertex " + std::to_string(hit->vertex + 1) +
-                          " contains that edge, which it does not use (parts of the mesh that meet at a vertex overlap "
-                          "there)");
+  if (const auto hit = internal::find_overlap_around_vertex(points, oriented, triangles)) {
+    // The tetrahedron of the boundary edge (the first that uses both ends).
+    std::size_t edge_tet = 0;
+    while (std::count(oriented[edge_tet].begin(), oriented[edge_tet].end(), hit->vertex) == 0 ||
+           std::count(oriented[edge_tet].begin(), oriented[edge_tet].end(), hit->edge_end) == 0)
+      ++edge_tet;
+    const std::size_t t = std::max(edge_tet, hit->tet);
+    const std::string p = std::to_string(hit->vertex + 1), q = std::to_string(hit->edge_end + 1);
+    throw Input_error(src.file, internal::tet_line(src, t), internal::tet_name(src, t),
+                      "overlaps tetrahedron " + std::to_string(std::min(edge_tet, hit->tet) + 1) +
+                          " near their common vertex " + p + ": the boundary edge (" + p + ", " + q + ") of tetrahedron " +
+                          std::to_string(edge_tet + 1) + " lies in the corner of tetrahedron " +
+                          std::to_string(hit->tet + 1) + " at vertex " + p +
+                          " (parts of the mesh that meet at a vertex overlap there)");
+  }
   // ... and a part inside another one, with no boundary contact.
   {
     std::vector<std::size_t> boundary_vertices;
