@@ -224,12 +224,16 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_fie
     } while (++circ != done);
     if (!interior) continue;
     const int n = int(loop.size());
-    Eigen::Matrix3d P = Eigen::Matrix3d::Identity();
-    for (int k = 0; k < n; ++k) {
-      const Cell_handle a = loop[k], b = loop[(k + 1) % n];
-      P = matchings.matching(std::size_t(ff.index(a)), a->index(b)) * P;
-    }
-    if (octahedral_group_index(P, 0) == 0) continue; // regular from any start
+    // The product of the matchings around the loop, from loop[0].
+    auto loop_product = [&] {
+      Eigen::Matrix3d product = Eigen::Matrix3d::Identity();
+      for (int k = 0; k < n; ++k) {
+        const Cell_handle a = loop[k], b = loop[(k + 1) % n];
+        product = matchings.matching(std::size_t(ff.index(a)), a->index(b)) * product;
+      }
+      return product;
+    };
+    if (octahedral_group_index(loop_product(), 0) == 0) continue; // regular from any start
 
     // A canonical loop, from the tetrahedron of smallest index, turning
     // positively about u -> v (u the smaller vertex index): CGAL's edge
@@ -251,11 +255,7 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_fie
       turn += (ff.centroid(ia) - pu).cross(ff.centroid(ib) - pu).dot(pv - pu);
     }
     if (turn < 0) std::reverse(loop.begin() + 1, loop.end());
-    P = Eigen::Matrix3d::Identity();
-    for (int k = 0; k < n; ++k) {
-      const Cell_handle a = loop[k], b = loop[(k + 1) % n];
-      P = matchings.matching(std::size_t(ff.index(a)), a->index(b)) * P;
-    }
+    const Eigen::Matrix3d P = loop_product();
     const int monodromy = octahedral_group_index(P, 0);
 
     Found f;

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <limits>
 #include <numeric>
+#include <utility>
 
 namespace CGAL_ext {
 namespace internal {
@@ -117,6 +118,33 @@ bool inside_facets(const std::array<Point, 4>& q, const Point& x, unsigned facet
   return true;
 }
 
+// The hit of search(k, state) (a std::optional) with the smallest k in
+// [0, n), searched in parallel: the same whatever the thread count. Each
+// task has its own State (scratch space) and stops past the smallest hit
+// found so far.
+template <class State, class Search>
+auto smallest_hit(std::size_t n, std::size_t grain, Search search) {
+  using Hit = decltype(search(std::size_t(0), std::declval<State&>()));
+  std::atomic<std::size_t> first_found{n};
+  tbb::combinable<std::pair<std::size_t, Hit>> found([n] { return std::make_pair(n, Hit()); });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain), [&](const tbb::blocked_range<std::size_t>& range) {
+    State state;
+    for (std::size_t k = range.begin(); k < range.end() && k < first_found.load(); ++k)
+      if (Hit hit = search(k, state)) {
+        auto& mine = found.local();
+        if (k < mine.first) mine = std::make_pair(k, std::move(hit));
+        std::size_t seen = first_found.load();
+        while (k < seen && !first_found.compare_exchange_weak(seen, k)) {}
+        return;
+      }
+  });
+  std::pair<std::size_t, Hit> best(n, Hit());
+  found.combine_each([&](const std::pair<std::size_t, Hit>& mine) {
+    if (mine.first < best.first) best = mine;
+  });
+  return best.second;
+}
+
 } // namespace
 
 std::optional<std::array<std::size_t, 2>>
@@ -159,9 +187,16 @@ std::optional<Edge_overlap> find_overlap_around_edge(const std::vector<std::arra
     Point from, to;
     int half_from, half_to; // Angle_around_edge_3::half()
   };
-  // The first overlap about an edge (a, b) with b > a, with scratch vectors.
-  auto at_vertex = [&](std::size_t a, std::vector<Wedge>& wedges, std::vector<End>& ends,
-                       std::vector<std::size_t>& order) -> std::optional<Edge_overlap> {
+  struct Scratch {
+    std::vector<Wedge> wedges;
+    std::vector<End> ends;
+    std::vector<std::size_t> order;
+  };
+  // The first overlap about an edge (a, b) with b > a.
+  auto at_vertex = [&](std::size_t a, Scratch& scratch) -> std::optional<Edge_overlap> {
+    std::vector<Wedge>& wedges = scratch.wedges;
+    std::vector<End>& ends = scratch.ends;
+    std::vector<std::size_t>& order = scratch.order;
     wedges.clear();
     for (std::size_t k = first[a]; k < first[a + 1]; ++k) {
       const std::size_t t = around[k];
@@ -237,28 +272,8 @@ std::optional<Edge_overlap> find_overlap_around_edge(const std::vector<std::arra
     }
     return std::nullopt;
   };
-  // In parallel over the vertices; the overlap at the smallest vertex is
-  // reported, whatever the thread count.
-  std::atomic<std::size_t> first_found{nv};
-  tbb::combinable<std::optional<Edge_overlap>> found;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 1024), [&](const tbb::blocked_range<std::size_t>& range) {
-    std::vector<Wedge> wedges;
-    std::vector<End> ends;
-    std::vector<std::size_t> order;
-    for (std::size_t a = range.begin(); a < range.end() && a < first_found.load(); ++a)
-      if (auto hit = at_vertex(a, wedges, ends, order)) {
-        auto& mine = found.local();
-        if (!mine || a < mine->edge[0]) mine = hit;
-        std::size_t seen = first_found.load();
-        while (a < seen && !first_found.compare_exchange_weak(seen, a)) {}
-        return;
-      }
-  });
-  std::optional<Edge_overlap> result;
-  found.combine_each([&](const std::optional<Edge_overlap>& hit) {
-    if (hit && (!result || hit->edge[0] < result->edge[0])) result = hit;
-  });
-  return result;
+  // The overlap at the smallest vertex, whatever the thread count.
+  return smallest_hit<Scratch>(nv, 1024, at_vertex);
 }
 
 std::optional<Vertex_in_tet> find_vertex_inside_tet(const std::vector<std::array<double, 3>>& points,
@@ -364,8 +379,9 @@ std::optional<Vertex_overlap> find_overlap_around_vertex(const std::vector<std::
     if (e == 0 || edges[e][0] != edges[e - 1][0]) groups.push_back(e);
   groups.push_back(edges.size());
 
-  // The first (q, tet) at vertex p, both in increasing order.
-  auto at_vertex = [&](std::size_t g) -> std::optional<Vertex_overlap> {
+  // The first (q, tet) at the vertex p of group g, both in increasing order.
+  struct No_scratch {};
+  auto at_vertex = [&](std::size_t g, No_scratch&) -> std::optional<Vertex_overlap> {
     const std::size_t p = edges[groups[g]][0];
     for (std::size_t e = groups[g]; e < groups[g + 1]; ++e) {
       const std::size_t q = edges[e][1];
@@ -383,27 +399,8 @@ std::optional<Vertex_overlap> find_overlap_around_vertex(const std::vector<std::
     }
     return std::nullopt;
   };
-  // In parallel over the vertices; the overlap at the smallest vertex is
-  // reported, whatever the thread count.
-  const std::size_t ng = groups.size() - 1;
-  std::atomic<std::size_t> first_found{ng};
-  tbb::combinable<std::optional<std::pair<std::size_t, Vertex_overlap>>> found;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ng, 256), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t g = range.begin(); g < range.end() && g < first_found.load(); ++g)
-      if (auto hit = at_vertex(g)) {
-        auto& mine = found.local();
-        if (!mine || g < mine->first) mine = std::make_pair(g, *hit);
-        std::size_t seen = first_found.load();
-        while (g < seen && !first_found.compare_exchange_weak(seen, g)) {}
-        return;
-      }
-  });
-  std::optional<std::pair<std::size_t, Vertex_overlap>> result;
-  found.combine_each([&](const std::optional<std::pair<std::size_t, Vertex_overlap>>& hit) {
-    if (hit && (!result || hit->first < result->first)) result = hit;
-  });
-  if (!result) return std::nullopt;
-  return result->second;
+  // The overlap at the smallest vertex, whatever the thread count.
+  return smallest_hit<No_scratch>(groups.size() - 1, 256, at_vertex);
 }
 
 } // namespace internal
