@@ -6,7 +6,12 @@
 // / 20 for surfaces and built-in shapes), model by model: what decides
 // whether an integer-grid map can mesh the field (singular edges of each
 // kind, curves, nodes, curves ending inside the volume) and how smooth it
-// is (face angles, energy, boundary alignment).
+// is (face angles, energy, boundary alignment), and how it follows the
+// sharp features (the direction error of the feature edges, singular edges
+// at feature vertices). Each model's field is computed twice on the same
+// mesh, side by side: with the default options ("features"), and with
+// feature detection off (feature_angle_deg = 180, the boundary rule before
+// features: "no features").
 //
 //   benchmark_frame_quality [size_fraction=F] [INPUT ...]
 //
@@ -22,6 +27,7 @@
 #include <CGAL_ext/Frame_field_singularities_3.h>
 #include <CGAL_ext/IO/Medit_mesh.h>
 #include <CGAL_ext/Metric_field_3.h>
+#include <CGAL_ext/Sharp_features_3.h>
 #include <CGAL_ext/build_triangulation_from_tets.h>
 #include <CGAL_ext/tetrahedralize.h>
 
@@ -59,10 +65,11 @@ CGAL_ext::IO::Medit_mesh mesh_of(const std::string& input, double size_fraction)
   namespace fs = std::filesystem;
   if (fs::path(input).extension() == ".mesh") return CGAL_ext::IO::read_medit_mesh(input);
   CGAL_ext::Tetrahedralize_options mo;
+  mo.sharp_angle_deg = CGAL_ext::Frame_field_options().feature_angle_deg; // as generate
   if (size_fraction > 0) {
     // The size is a fraction of the domain's diagonal: mesh coarsely once
     // to find it (Mesh_3's own automatic size is the diagonal / 20).
-    CGAL_ext::Tetrahedralize_options coarse;
+    CGAL_ext::Tetrahedralize_options coarse = mo;
     const bool builtin = input.rfind("builtin:", 0) == 0;
     const auto m = builtin ? CGAL_ext::tetrahedralize_builtin(input.substr(8), coarse)
                            : CGAL_ext::tetrahedralize_surface(input, coarse);
@@ -76,20 +83,24 @@ struct Quality {
   std::size_t tets = 0, singular = 0, plus = 0, minus = 0, non_meshable = 0, curves = 0, nodes = 0,
               interior_ends = 0;
   double angle_mean = 0, angle_median = 0, energy_per_weight = 0, align_mean = 0, align_max = 0;
-  double seconds_mesh = 0, seconds_field = 0;
+  // The features found at the default angle (whether the field used them or not).
+  std::size_t feature_edges = 0, corners = 0;
+  // The angle between a feature edge's direction (in the metric) and the
+  // nearest frame axis, over the (tetrahedron, feature edge) pairs.
+  double tangent_error_mean = 0, tangent_error_max = 0;
+  // Singular edges with a vertex on a feature edge, and those of them that
+  // run along the surface (both vertices on the boundary).
+  std::size_t singular_at_features = 0, singular_along_features = 0;
+  double seconds_field = 0;
 };
 
-Quality measure(const std::string& input, double size_fraction) {
+Quality measure(const Tr& tr, const Field& field, double feature_angle_deg) {
   Quality q;
-  auto t = std::chrono::steady_clock::now();
-  const CGAL_ext::IO::Medit_mesh mesh = mesh_of(input, size_fraction);
-  q.seconds_mesh = since(t);
-  t = std::chrono::steady_clock::now();
-  Tr tr;
-  CGAL_ext::build_triangulation_from_tets(mesh.vertices, mesh.tetrahedra, mesh.tetrahedron_references, tr);
-  const Field field(tr, Eigen::Matrix3d::Identity().eval());
+  const auto t = std::chrono::steady_clock::now();
   Frames ff(field);
-  const CGAL_ext::Frame_field_statistics& st = ff.compute(CGAL_ext::Frame_field_options());
+  CGAL_ext::Frame_field_options options;
+  options.feature_angle_deg = feature_angle_deg;
+  const CGAL_ext::Frame_field_statistics& st = ff.compute(options);
   const CGAL_ext::Frame_field_matchings_3<Frames> matchings(ff);
   const auto edges = CGAL_ext::singular_edges(ff, matchings);
   const CGAL_ext::Singularity_graph graph = CGAL_ext::singularity_graph(ff, edges);
@@ -111,7 +122,50 @@ Quality measure(const std::string& input, double size_fraction) {
   q.energy_per_weight = st.smoothness_energy / st.total_face_weight;
   q.align_mean = st.boundary_error_mean_deg;
   q.align_max = st.boundary_error_max_deg;
+
+  // The features at the default angle, measured on both fields alike.
+  const CGAL_ext::Sharp_features_3<Field> features(field, CGAL_ext::Frame_field_options().feature_angle_deg);
+  q.feature_edges = features.feature_edges().size();
+  q.corners = features.number_of_corners();
+  std::size_t pairs = 0;
+  for (std::size_t i = 0; i < ff.size(); ++i) {
+    const auto c = ff.cell(i);
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) {
+        if (!features.is_feature_edge(ff.vertex_index(c->vertex(a)), ff.vertex_index(c->vertex(b)))) continue;
+        const Eigen::Vector3d d =
+            ff.sqrt_metric(i) *
+            (CGAL_ext::internal::to_eigen_vector(c->vertex(b)->point()) - CGAL_ext::internal::to_eigen_vector(c->vertex(a)->point()));
+        const double cosine = (ff.rotation(i).transpose() * d.normalized()).cwiseAbs().maxCoeff();
+        const double error = std::acos(std::min(1.0, cosine)) * 180 / M_PI;
+        q.tangent_error_mean += error;
+        q.tangent_error_max = std::max(q.tangent_error_max, error);
+        ++pairs;
+      }
+  }
+  if (pairs > 0) q.tangent_error_mean /= double(pairs);
+  std::vector<char> on_boundary(tr.number_of_vertices(), 0);
+  for (std::size_t i = 0; i < ff.size(); ++i)
+    for (int f = 0; f < 4; ++f)
+      if (ff.neighbor(i, f) < 0)
+        for (int k = 0; k < 4; ++k)
+          if (k != f) on_boundary[ff.vertex_index(ff.cell(i)->vertex(k))] = 1;
+  for (const auto& e : edges) {
+    const bool at = features.kind(e.vertices[0]) != CGAL_ext::Feature_vertex_kind::none ||
+                    features.kind(e.vertices[1]) != CGAL_ext::Feature_vertex_kind::none;
+    q.singular_at_features += at;
+    q.singular_along_features += at && on_boundary[e.vertices[0]] && on_boundary[e.vertices[1]];
+  }
   return q;
+}
+
+void print_row(const std::string& name, const char* variant, const Quality& q, double seconds_mesh) {
+  std::printf("%-22s %-11s %8zu %6zu %5zu %5zu %5zu %6zu %5zu %6zu %8.3f %8.3f %8.4f %7.3f %7.2f %6zu %6zu %7.2f %7.2f "
+              "%5zu %5zu %7.1f %7.1f\n",
+              name.c_str(), variant, q.tets, q.singular, q.plus, q.minus, q.non_meshable, q.curves, q.nodes,
+              q.interior_ends, q.angle_mean, q.angle_median, q.energy_per_weight, q.align_mean, q.align_max,
+              q.feature_edges, q.corners, q.tangent_error_mean, q.tangent_error_max, q.singular_at_features,
+              q.singular_along_features, seconds_mesh, q.seconds_field);
 }
 
 } // namespace
@@ -141,23 +195,31 @@ int main(int argc, char** argv) {
       for (const char* model : {"fandisk", "anchor", "joint", "rotor", "elephant"})
         inputs.push_back(std::string(dir) + "/" + model + ".off");
   }
-  std::printf("Frame-field quality with generate's default options (identity metric, Frame_field_options()), %d threads.\n"
+  std::printf("Frame-field quality with generate's default options (identity metric, Frame_field_options()), %d threads,\n"
+              "with the default feature angle (features) and with features off (no features) on the same mesh.\n"
               "Singular edges: all, +1/4, -1/4, non-meshable (neither quarter turn about the edge); curves, nodes, curves\n"
               "ending inside the volume; face angle between matched neighbouring frames (deg); energy per unit face\n"
-              "weight; boundary alignment error (deg); seconds for Mesh_3 and for the field (triangulation to curves).\n\n",
+              "weight; boundary alignment error (deg); feature edges and corners (at the default angle); angle between\n"
+              "a feature edge and the nearest frame axis (deg, mean and max over tetrahedra at feature edges); singular\n"
+              "edges at a feature vertex (f.sing) and, of them, along the surface (f.surf); seconds for the mesh (Mesh_3\n"
+              "or reading) and for the field (frames, matchings, singular curves).\n\n",
               tbb::info::default_concurrency());
-  std::printf("%-22s %8s %6s %5s %5s %5s %6s %5s %6s %8s %8s %8s %7s %7s %7s %7s\n", "model", "tets", "sing", "+1/4",
-              "-1/4", "nonm", "curves", "nodes", "in-end", "ang.mean", "ang.med", "E/w", "al.mean", "al.max", "mesh s",
-              "field s");
+  std::printf("%-22s %-11s %8s %6s %5s %5s %5s %6s %5s %6s %8s %8s %8s %7s %7s %6s %6s %7s %7s %5s %5s %7s %7s\n",
+              "model", "variant", "tets", "sing", "+1/4", "-1/4", "nonm", "curves", "nodes", "in-end", "ang.mean",
+              "ang.med", "E/w", "al.mean", "al.max", "f.edge", "corner", "tan.mean", "tan.max", "f.sing", "f.surf",
+              "mesh s", "field s");
   int failures = 0;
   for (const std::string& input : inputs) {
     const std::string name = input.rfind("builtin:", 0) == 0 ? input : std::filesystem::path(input).filename().string();
     try {
-      const Quality q = measure(input, size_fraction);
-      std::printf("%-22s %8zu %6zu %5zu %5zu %5zu %6zu %5zu %6zu %8.3f %8.3f %8.4f %7.3f %7.2f %7.1f %7.1f\n",
-                  name.c_str(), q.tets, q.singular, q.plus, q.minus, q.non_meshable, q.curves, q.nodes, q.interior_ends,
-                  q.angle_mean, q.angle_median, q.energy_per_weight, q.align_mean, q.align_max, q.seconds_mesh,
-                  q.seconds_field);
+      const auto t = std::chrono::steady_clock::now();
+      const CGAL_ext::IO::Medit_mesh mesh = mesh_of(input, size_fraction);
+      Tr tr;
+      CGAL_ext::build_triangulation_from_tets(mesh.vertices, mesh.tetrahedra, mesh.tetrahedron_references, tr);
+      const Field field(tr, Eigen::Matrix3d::Identity().eval());
+      const double seconds_mesh = since(t);
+      print_row(name, "features", measure(tr, field, CGAL_ext::Frame_field_options().feature_angle_deg), seconds_mesh);
+      print_row(name, "no features", measure(tr, field, 180), seconds_mesh);
     } catch (const std::exception& e) {
       std::printf("%-22s error: %s\n", name.c_str(), e.what());
       ++failures;

@@ -91,6 +91,11 @@ TEST_CASE("generate writes the six files, and the identity metric on a cube give
   CHECK(number_after(report, "face_angle_deg\": {\"mean") < 1e-6); // a constant field
   CHECK(report.find("\"g_orthonormality_max_error\"") != std::string::npos);
   CHECK(report.find("\"stage_seconds\"") != std::string::npos);
+  // The cube's 12 edges are feature curves meeting at its 8 corners.
+  CHECK(number_after(report, "sharp_features\": {\"angle_deg") == 40);
+  CHECK(number_after(report, "corners") == 8);
+  CHECK(number_after(report, "curve_vertices") > 0);
+  CHECK(r.err.find("sharp features") != std::string::npos);
 
   // .fra: the parameter gradients, +-e_k / h.
   const auto frames = CGAL_ext::IO::read_fra((out / "frames.fra").string());
@@ -253,6 +258,14 @@ TEST_CASE("generate rejects bad input with a clear message", "[cli][generate]") 
     CHECK(r.err.find("--metric-const") != std::string::npos);
     CHECK(r.err.find("positive definite") != std::string::npos);
   }
+  SECTION("a feature angle out of range") {
+    for (const char* bad : {"0", "-5", "181", "nan", "40deg"}) {
+      const Run r = run("generate " + cube + " --feature-angle " + bad + " -o " + out);
+      INFO(bad << ": " << r.err);
+      CHECK(r.exit_code == 2);
+      CHECK(r.err.find("--feature-angle") != std::string::npos);
+    }
+  }
   SECTION("a constant metric with NaN") {
     const Run r = run("generate " + cube + " --metric-const '1 0 nan 0 0 1' -o " + out);
     CHECK(r.exit_code == 2);
@@ -364,13 +377,35 @@ TEST_CASE("generate meshes a built-in shape with Mesh_3", "[cli][generate]") {
   CHECK(perm.tets == mesh.tetrahedra.size());
   REQUIRE(!perm.faces.empty());
   const auto frames = CGAL_ext::IO::read_fra((out / "frames.fra").string());
-  for (const auto& face : perm.faces)
+  // The matching is the nearest one: no other rotation of the octahedral
+  // group (a signed permutation of determinant 1) gives a larger sum of dot
+  // products between tet1's vectors and tet2's (neighbouring frames near a
+  // singular edge of this coarse mesh can be more than 45 degrees apart).
+  auto sum_of_dots = [&](const CGAL_ext::IO::Perm_face& face, const std::array<int, 3>& p) {
+    double sum = 0;
     for (int k = 0; k < 3; ++k) {
       const double* a = &frames[face.tet1][3 * k];
-      const double* b = &frames[face.tet2][3 * (std::abs(face.p[k]) - 1)];
-      const double dot = (face.p[k] > 0 ? 1 : -1) * (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
-      CHECK(dot > std::cos(M_PI / 4) / (0.35 * 0.35)); // gradients of length 1 / 0.35
+      const double* b = &frames[face.tet2][3 * (std::abs(p[k]) - 1)];
+      sum += (p[k] > 0 ? 1 : -1) * (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
     }
+    return sum;
+  };
+  for (const auto& face : perm.faces) {
+    const std::array<int, 3> matched = {face.p[0], face.p[1], face.p[2]};
+    const double best = sum_of_dots(face, matched);
+    CHECK(best > 0);
+    std::array<int, 3> q = {1, 2, 3};
+    do {
+      for (int signs = 0; signs < 8; ++signs) {
+        std::array<int, 3> p = q;
+        int determinant = (q[0] > q[1]) + (q[0] > q[2]) + (q[1] > q[2]) & 1 ? -1 : 1; // the parity of q
+        for (int k = 0; k < 3; ++k)
+          if (signs >> k & 1) p[k] = -p[k], determinant = -determinant;
+        if (determinant < 0) continue; // not a rotation
+        CHECK(sum_of_dots(face, p) <= best + 1e-9 / (0.35 * 0.35));
+      }
+    } while (std::next_permutation(q.begin(), q.end()));
+  }
 }
 
 namespace {

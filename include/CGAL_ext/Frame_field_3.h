@@ -13,6 +13,7 @@
 #include <CGAL_ext/Input_error.h>
 #include <CGAL_ext/Metric_field_3.h>
 #include <CGAL_ext/Octahedral_frame.h>
+#include <CGAL_ext/Sharp_features_3.h>
 #include <CGAL_ext/Tet_mesh_triangulation_3.h>
 
 #include <Eigen/Cholesky>
@@ -28,6 +29,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <complex>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
@@ -49,6 +51,15 @@ struct Frame_field_options {
   /// Whether boundary tetrahedra are constrained exactly after the
   /// projection (their frame keeps an axis on `A^{-1} n`; see `Frame_field_3`).
   bool hard_boundary = true;
+  /// The feature angle in degrees (`Sharp_features_3`): boundary edges whose
+  /// facets' normals differ by more than this, in the metric, are feature
+  /// edges. With `hard_boundary`, the tetrahedra at a feature edge or curve
+  /// keep an axis on its direction, and those at a corner the corner's
+  /// frame. 40 degrees keeps 45-degree chamfers and leaves the facets of
+  /// smooth surfaces meshed at a tenth of their radius (about 6 degrees
+  /// apart) alone; 180 turns feature detection off (except where parts of
+  /// the domain meet along an edge).
+  double feature_angle_deg = 40;
   /// Tolerance in radians of each face transport `T(i->j)`.
   double transport_tolerance = 1e-6;
   /// The transport scheme.
@@ -92,6 +103,11 @@ struct Frame_field_statistics {
   /// Boundary tetrahedra with one hard axis, and with two (a frame fixed by
   /// two non-parallel boundary faces, e.g. along a sharp edge).
   std::size_t hard_one_axis = 0, hard_two_axes = 0;
+  /// Feature edges, vertices on feature curves and corners (`Sharp_features_3`).
+  std::size_t feature_edges = 0, feature_curve_vertices = 0, feature_corners = 0;
+  /// Tetrahedra whose hard axes come from a feature: a corner's frame, a
+  /// feature edge's direction or a feature curve's tangent at a vertex.
+  std::size_t feature_tets = 0;
   /// Face transports that are exactly the identity (constant metric).
   std::size_t identity_transports = 0;
   /// Largest transport angle over the faces, in radians.
@@ -186,9 +202,18 @@ void parallel_for_each_index(std::size_t n, F&& f) {
 /// the metric distance from the tetrahedron's centroid to the face centroid.
 /// With `hard_boundary`, after the projection each boundary tetrahedron is
 /// turned so that an axis is exactly on `d` of its largest boundary face (and
-/// a second axis on a second face whose `d` is more than 30 degrees from the
-/// first, projected orthogonally to it), and the refinement only turns it
-/// about that axis (or not at all).
+/// a second axis on a second face whose `d` is more than 30 degrees from
+/// the first, projected orthogonally to it), and the refinement only
+/// turns it about that axis (or not at all).
+///
+/// **Sharp features** (`Sharp_features_3`, `feature_angle_deg`). With
+/// `hard_boundary`, a tetrahedron with a corner of the boundary takes the
+/// corner's frame (two hard axes). One with a feature edge keeps an axis on
+/// the feature curve's tangent `A t`; its rotation about it comes from its
+/// boundary faces: if they agree, the largest face is followed exactly (and
+/// the tangent as far as it allows); if they lie on both sides of a crease,
+/// the frame takes the mean of their directions modulo a quarter turn, so
+/// that they share the crease's angle; without boundary faces it is free.
 ///
 /// **Method.** (1) Sparse linear initialisation: the quadratic energy plus
 /// the soft boundary terms, minimised over unconstrained 9-vectors by
@@ -449,22 +474,50 @@ private:
     if (opt_.progress) opt_.progress(stage, seconds, detail);
   }
   static Point_3 point(const Eigen::Vector3d& v) { return Point_3(v(0), v(1), v(2)); }
-  // The facet's centroid, area vector direction (outward of c) and area.
-  static void facet_geometry(Cell_handle c, int f, Eigen::Vector3d& centroid, Eigen::Vector3d& normal, double& area) {
-    // CGAL: the vertices (f+1, f+2, f+3) seen from vertex f; for a positive
-    // cell, vertex_triple_index orders them so that the normal points out.
-    Eigen::Vector3d p[3];
-    for (int k = 0; k < 3; ++k) p[k] = internal::to_eigen_vector(c->vertex(Triangulation::vertex_triple_index(f, k))->point());
-    centroid = (p[0] + p[1] + p[2]) / 3;
-    const Eigen::Vector3d a = (p[1] - p[0]).cross(p[2] - p[0]);
-    area = 0.5 * a.norm();
-    normal = a.normalized();
-    const Eigen::Vector3d opposite = internal::to_eigen_vector(c->vertex(f)->point());
-    if (normal.dot(opposite - p[0]) > 0) normal = -normal; // outward whatever the convention
-  }
   static double metric_area(const Eigen::Matrix3d& A, const Eigen::Vector3d& n, double area) {
     // Nanson: the image of the area vector a n under x -> A x is det(A) A^{-T} a n.
     return A.determinant() * (A.inverse().transpose() * n).norm() * area;
+  }
+
+  // The axes a feature imposes on tetrahedron i (Euclidean directions; 0, 1
+  // or 2 of them): the frame of its corner of smallest index if it has a
+  // corner, else the tangent of its first feature edge (and a second one's
+  // if it turns by more than the feature angle: two creases of a thin part).
+  struct Feature_axes {
+    int axes = 0;
+    Eigen::Vector3d u1 = Eigen::Vector3d::Zero(), u2 = Eigen::Vector3d::Zero();
+  };
+  template <class Features>
+  Feature_axes feature_axes(std::size_t i, const Features& features, double unit) const {
+    Feature_axes out;
+    const Cell_handle c = cells_[i];
+    std::array<std::size_t, 4> v;
+    for (int k = 0; k < 4; ++k) v[k] = get(vim_, c->vertex(k));
+    std::array<int, 4> by_index = {0, 1, 2, 3};
+    std::sort(by_index.begin(), by_index.end(), [&](int a, int b) { return v[a] < v[b]; });
+    for (int k : by_index)
+      if (features.kind(v[k]) == Feature_vertex_kind::corner) {
+        out.axes = 2;
+        out.u1 = features.corner_axes(v[k]).col(0);
+        out.u2 = features.corner_axes(v[k]).col(1);
+        return out;
+      }
+    const double cos_feature = std::cos(opt_.feature_angle_deg * M_PI / 180);
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) {
+        const std::size_t p = v[by_index[a]], q = v[by_index[b]];
+        if (!features.is_feature_edge(p, q)) continue;
+        const Eigen::Vector3d t = features.edge_tangent(p, q);
+        if (out.axes == 0) {
+          out.axes = 1;
+          out.u1 = t;
+        } else if (out.axes == 1 &&
+                   std::abs((unit * A_[i] * t).normalized().dot((unit * A_[i] * out.u1).normalized())) < cos_feature) {
+          out.axes = 2;
+          out.u2 = t;
+        }
+      }
+    return out;
   }
 
   void setup() {
@@ -508,7 +561,7 @@ private:
         if (j < 0 || std::size_t(j) < i) continue;
         Eigen::Vector3d fc, nrm;
         double area;
-        facet_geometry(c, f, fc, nrm, area);
+        internal::boundary_facet_geometry(c, f, fc, nrm, area);
         const Eigen::Matrix3d Af = unit * field_->A_at(c, point(fc));
         L.w[f] = metric_area(Af, nrm, area) / (Af * (centroid_[j] - centroid_[i])).norm();
       }
@@ -522,6 +575,13 @@ private:
     boundary_.clear();
     constraints_.clear();
     stats_.interior_faces = stats_.boundary_faces = stats_.hard_one_axis = stats_.hard_two_axes = 0;
+    const Sharp_features_3<Metric_field, CellIndexMap, VertexIndexMap> features(*field_, opt_.feature_angle_deg, cim_,
+                                                                               vim_);
+    stats_.feature_edges = features.feature_edges().size();
+    stats_.feature_curve_vertices = features.number_of_curve_vertices();
+    stats_.feature_corners = features.number_of_corners();
+    stats_.feature_tets = 0;
+    const double cos_feature = std::cos(opt_.feature_angle_deg * M_PI / 180);
     total_weight_ = 0;
     std::vector<double> scaled_area; // metric areas in the weights' unit, per boundary face
     const Sh_vector s0 = octahedral_reference_sh();
@@ -537,7 +597,7 @@ private:
         }
         Eigen::Vector3d fc, nrm;
         double area;
-        facet_geometry(cells_[i], f, fc, nrm, area);
+        internal::boundary_facet_geometry(cells_[i], f, fc, nrm, area);
         const Eigen::Matrix3d Af = unit * field_->A_at(cells_[i], point(fc));
         Boundary_face bf;
         bf.tet = i;
@@ -550,32 +610,87 @@ private:
         links_[i].w[f] = opt_.boundary_weight * scaled_area.back() / (Af * (fc - centroid_[i])).norm();
         boundary_.push_back(bf);
       }
-      if (boundary_.size() == first) continue;
+      const Feature_axes fa = feature_axes(i, features, unit);
+      if (boundary_.size() == first && fa.axes == 0) continue;
       Constraint C;
-      for (std::size_t k = first; k < boundary_.size(); ++k) {
-        const Boundary_face& bf = boundary_[k];
-        const double w = links_[i].w[bf.facet];
-        const Sh_matrix D = sh_rotation(Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), bf.direction));
+      // A soft term: the frame should have an axis on d (rotation about d free).
+      auto add_soft_term = [&](const Eigen::Vector3d& d, double w) {
+        const Sh_matrix D = sh_rotation(Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), d));
         Sh_matrix M = Sh_matrix::Identity();
         M(0, 0) = M(8, 8) = 0; // m = +-4 are free (rotation about d)
         C.B += w * D * M * D.transpose();
         C.b += w * s0(4) * D.col(4);
         C.c += w * s0(4) * s0(4);
-      }
-      // Hard axes: the largest metric area first, then a face more than 30
-      // degrees away from it.
+      };
+      for (std::size_t k = first; k < boundary_.size(); ++k)
+        add_soft_term(boundary_[k].direction, links_[i].w[boundary_[k].facet]);
+      // The boundary faces by decreasing metric area.
       std::vector<std::size_t> order;
       for (std::size_t k = first; k < boundary_.size(); ++k) order.push_back(k);
       std::stable_sort(order.begin(), order.end(),
                        [&](std::size_t a, std::size_t b) { return scaled_area[a] > scaled_area[b]; });
-      C.d1 = boundary_[order[0]].direction;
-      C.axes = 1;
-      for (std::size_t k = 1; k < order.size(); ++k) {
-        const Eigen::Vector3d& d = boundary_[order[k]].direction;
-        if (std::abs(d.dot(C.d1)) < std::cos(M_PI / 6)) {
-          C.d2 = (d - d.dot(C.d1) * C.d1).normalized();
+      if (fa.axes > 0) {
+        // The feature's axes, mapped by A into the rotation's space (the
+        // frame's axes are A^{-1} R e_k). They are hard constraints only:
+        // as soft terms in the linear initialisation, next to the faces'
+        // terms, they raised the energy and the non-meshable edges of
+        // CGAL's anchor (doc/benchmarks.md).
+        C.d1 = (unit * A_[i] * fa.u1).normalized();
+        C.axes = 1;
+        if (fa.axes == 2) {
+          C.d2 = (unit * A_[i] * fa.u2).normalized();
+          C.d2 = (C.d2 - C.d2.dot(C.d1) * C.d1).normalized();
           C.axes = 2;
-          break;
+        } else {
+          // The rotation about the tangent, from the boundary faces: their
+          // normals, projected orthogonally to the tangent, at angles
+          // theta_k from the largest one's. If they agree (each within the
+          // feature angle of an axis of the largest face's frame), the
+          // largest face is followed exactly and the tangent as far as it
+          // allows. Faces on both sides of a crease disagree: the frame then
+          // takes the mean of the theta_k modulo a quarter turn, arg(sum
+          // e^{4 i theta_k}) / 4, which shares the crease's angle between
+          // them (22.5 degrees each on a 45-degree crease, where following
+          // the largest face put all 45 on the other one). The faces' soft
+          // terms cannot decide it: on a 45-degree crease their sum does not
+          // depend on the rotation.
+          Eigen::Vector3d p1 = Eigen::Vector3d::Zero();
+          bool agree = true;
+          std::complex<double> sum = 0;
+          for (std::size_t k : order) {
+            const Eigen::Vector3d& d = boundary_[k].direction;
+            Eigen::Vector3d p = d - d.dot(C.d1) * C.d1;
+            if (p.norm() < 0.5) continue; // within 30 degrees of the tangent: says nothing about the rotation
+            p.normalize();
+            if (p1.isZero()) p1 = p;
+            const double theta = std::atan2(p.dot(C.d1.cross(p1)), p.dot(p1));
+            sum += std::polar(1.0, 4 * theta);
+            agree = agree && std::max(std::abs(p.dot(p1)), std::abs(p.dot(C.d1.cross(p1)))) >= cos_feature;
+          }
+          if (!p1.isZero() && agree) {
+            const Eigen::Vector3d t = C.d1;
+            C.d1 = boundary_[order[0]].direction;
+            C.d2 = (t - t.dot(C.d1) * C.d1).normalized();
+            C.axes = 2;
+          } else if (!p1.isZero()) {
+            C.d2 = Eigen::AngleAxisd(std::arg(sum) / 4, C.d1) * p1;
+            C.axes = 2;
+          }
+        }
+        if (opt_.hard_boundary) ++stats_.feature_tets;
+      } else {
+        // Hard axes: the largest metric area first, then a face more than
+        // 30 degrees away from it (two faces of one tetrahedron meet at an
+        // edge: beyond the feature angle it is a feature edge, handled above).
+        C.d1 = boundary_[order[0]].direction;
+        C.axes = 1;
+        for (std::size_t k = 1; k < order.size(); ++k) {
+          const Eigen::Vector3d& d = boundary_[order[k]].direction;
+          if (std::abs(d.dot(C.d1)) < std::cos(M_PI / 6)) {
+            C.d2 = (d - d.dot(C.d1) * C.d1).normalized();
+            C.axes = 2;
+            break;
+          }
         }
       }
       if (opt_.hard_boundary) ++(C.axes == 2 ? stats_.hard_two_axes : stats_.hard_one_axis);
@@ -628,7 +743,7 @@ private:
         const Cell_handle cj = cells_[j];
         Eigen::Vector3d fc, nrm;
         double area;
-        facet_geometry(c, f, fc, nrm, area);
+        internal::boundary_facet_geometry(c, f, fc, nrm, area);
         const Point_3 pf = point(fc);
         const Transport_result a = cell_transport(*field_, c, point(centroid_[i]), pf, topt);
         const Transport_result b = cell_transport(*field_, cj, pf, point(centroid_[j]), topt);

@@ -39,9 +39,14 @@ struct Tetrahedralize_options {
   double facet_distance = 0;
   /// For polyhedral domains (input surfaces and the built-in `box_with_hole`
   /// and `cube`): detect the edges of the surface whose dihedral angle
-  /// differs from flat by more than 60 degrees, and protect them so that
-  /// the mesh keeps them sharp. Ignored by smooth (implicit) built-in shapes.
+  /// differs from flat by more than `sharp_angle_deg` (the angle between
+  /// the normals of their two facets), and protect them so that the mesh
+  /// keeps them sharp. Ignored by smooth (implicit) built-in shapes.
   bool sharp_features = true;
+  /// The angle of `sharp_features`, in degrees, in (0, 180]. At the default
+  /// 60, a 45-degree chamfer is not protected (its edges come out rounded);
+  /// the frame field's own feature angle (`Frame_field_options`) is 40.
+  double sharp_angle_deg = 60;
   /// The seed of the random numbers of CGAL used while meshing; the caller's
   /// `CGAL::get_default_random()` is restored afterwards.
   unsigned seed = 0;

@@ -80,9 +80,13 @@ const char* generate_help =
     "                        and stop Mesh_3 where its mesh reaches that (default:\n"
     "                        this machine's memory; 0: no limit)\n"
     "  --smooth-surface      do not protect the surface's sharp edges (creases\n"
-    "                        above 60 degrees) in Mesh_3: for organic models\n"
+    "                        above the feature angle) in Mesh_3: for organic models\n"
     "  --boundary-weight W   weight of the soft boundary term (default 100)\n"
     "  --soft-boundary       no hard boundary constraint after the projection\n"
+    "  --feature-angle A     boundary edges whose faces' normals differ by more than\n"
+    "                        A degrees (in the metric) are sharp features: the frames\n"
+    "                        follow them, and Mesh_3 keeps them sharp (default 40;\n"
+    "                        180: no features)\n"
     "  --max-iterations N    L-BFGS iterations at most (default 1000)\n"
     "  --tol T               face transport tolerance in radians (default 1e-6)\n"
     "  --threads N           worker threads (default: all); outputs do not depend on N\n"
@@ -320,6 +324,14 @@ int command_generate(const std::vector<std::string>& args) {
   Frame_field_options opt;
   if (const auto w = a.option("--boundary-weight")) opt.boundary_weight = parse_positive(a, "--boundary-weight", *w);
   opt.hard_boundary = !a.flag("--soft-boundary");
+  if (const auto f = a.option("--feature-angle")) {
+    char* end = nullptr;
+    const double v = std::strtod(f->c_str(), &end);
+    if (end == f->c_str() || *end != '\0' || !(v > 0 && v <= 180))
+      a.fail("--feature-angle '" + *f + "': expected an angle in degrees in (0, 180]");
+    opt.feature_angle_deg = v;
+  }
+  mesh_opt.sharp_angle_deg = opt.feature_angle_deg; // the mesh keeps the creases the frames follow
   if (const auto n = a.option("--max-iterations")) {
     char* end = nullptr;
     const long v = std::strtol(n->c_str(), &end, 10);
@@ -545,6 +557,9 @@ int command_generate(const std::vector<std::string>& args) {
      << ", \"max\": " << number(st.boundary_error_max_deg) << "},\n"
      << "  \"g_orthonormality_max_error\": " << number(st.max_orthonormality_error) << ",\n"
      << "  \"hard_boundary_tets\": {\"one_axis\": " << st.hard_one_axis << ", \"two_axes\": " << st.hard_two_axes << "},\n"
+     << "  \"sharp_features\": {\"angle_deg\": " << number(opt.feature_angle_deg) << ", \"edges\": " << st.feature_edges
+     << ", \"curve_vertices\": " << st.feature_curve_vertices << ", \"corners\": " << st.feature_corners
+     << ", \"tets\": " << st.feature_tets << "},\n"
      << "  \"max_transport_angle_deg\": " << number(st.max_transport_angle * 180 / M_PI) << ",\n"
      << "  \"linear_iterations\": " << st.linear_iterations << ",\n"
      << "  \"linear_residual\": " << number(st.linear_residual) << ",\n"
@@ -569,7 +584,7 @@ int command_generate(const std::vector<std::string>& args) {
   std::fprintf(stderr,
                "\n  %-32s %zu (%zu vertices)\n  %-32s %s\n  %-32s %s\n  %-32s %.0f\n"
                "  %-32s %.6g (per unit weight %.3g)\n  %-32s mean %.3g, median %.3g\n  %-32s mean %.3g, max %.3g\n"
-               "  %-32s %.3g\n"
+               "  %-32s %.3g\n  %-32s %zu edges, %zu corners (%.3g degrees), %zu tetrahedra follow them\n"
                "  %-32s %zu%s%s%s\n  %-32s %zu (%zu closed), nodes %zu (junctions %zu, boundary ends %zu, interior ends %zu)\n"
                "  %-32s %zu\n",
                "tetrahedra", nt, mesh.vertices.size(), "metric", metric_name.c_str(), "hex size",
@@ -577,7 +592,8 @@ int command_generate(const std::vector<std::string>& args) {
                "expected hexahedra", expected_hexes, "smoothness energy", st.smoothness_energy,
                st.smoothness_energy / st.total_face_weight, "face angle (deg)", angles.mean_deg, angles.median_deg,
                "boundary alignment error (deg)", st.boundary_error_mean_deg,
-               st.boundary_error_max_deg, "max |F^T g F - I|", st.max_orthonormality_error, "singular edges", sing.size(),
+               st.boundary_error_max_deg, "max |F^T g F - I|", st.max_orthonormality_error, "sharp features", st.feature_edges,
+               st.feature_corners, opt.feature_angle_deg, st.feature_tets, "singular edges", sing.size(),
                types.empty() ? "" : " (", types.c_str(), types.empty() ? "" : ")", "singular curves", graph.curves.size(),
                graph.closed_curves, graph.nodes.size(), graph.junctions, graph.boundary_ends, graph.interior_ends,
                "non-meshable singular edges", non_meshable);

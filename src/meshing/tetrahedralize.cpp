@@ -127,6 +127,9 @@ Sizes resolve_sizes(const Tetrahedralize_options& o, double bbox_diagonal, doubl
     throw Input_error(file, 0, element,
                       "the facet distance must be positive and finite, or 0 for automatic (got " +
                           number(o.facet_distance) + ")");
+  if (!(o.sharp_angle_deg > 0 && o.sharp_angle_deg <= 180))
+    throw Input_error(file, 0, element,
+                      "the sharp-edge angle must be in (0, 180] degrees (got " + number(o.sharp_angle_deg) + ")");
   Sizes s;
   s.size = o.size > 0 ? o.size : bbox_diagonal / 20;
   s.facet_distance = o.facet_distance > 0 ? o.facet_distance : s.size / 10;
@@ -403,7 +406,7 @@ IO::Medit_mesh mesh_polyhedral(const Surface& surface, const Tetrahedralize_opti
   Seeded_default_random seeded(o.seed);
   CGAL::Random rng(o.seed);
   Polyhedral_domain domain(surface, &rng);
-  if (o.sharp_features) domain.detect_features(60);
+  if (o.sharp_features) domain.detect_features(o.sharp_angle_deg);
   // Room for the protection of the sharp edges in the first round of Mesh_3.
   std::vector<std::tuple<Polyhedral_domain::Curve_index, std::pair<Point, Polyhedral_domain::Index>,
                          std::pair<Point, Polyhedral_domain::Index>>>
@@ -431,7 +434,7 @@ IO::Medit_mesh mesh_polyhedral(const Surface& surface, const Tetrahedralize_opti
                       "meshing produced no tetrahedra (is the size " + number(s.size) + " too large for the domain?)");
   IO::Medit_mesh m = to_medit_mesh(c3t3);
   description += "; " + sizes_text(s) + "; sharp edges " +
-                 (o.sharp_features ? "protected (60 degrees, " + std::to_string(m.edges.size()) + " mesh edges)"
+                 (o.sharp_features ? "protected (" + number(o.sharp_angle_deg) + " degrees, " + std::to_string(m.edges.size()) + " mesh edges)"
                                    : std::string("not protected")) +
                  "; " + optimize_text(o);
   fill_report(report, m, s, start, std::move(description));
