@@ -8,10 +8,11 @@
 // kind, curves, nodes, curves ending inside the volume) and how smooth it
 // is (face angles, energy, boundary alignment), and how it follows the
 // sharp features (the direction error of the feature edges, singular edges
-// at feature vertices). Each model's field is computed twice on the same
-// mesh, side by side: with the default options ("features"), and with
-// feature detection off (feature_angle_deg = 180, the boundary rule before
-// features: "no features").
+// at feature vertices). Side by side on the same mesh: generate's field
+// before the repair of non-meshable edges ("no repair", default options),
+// after it ("repaired", generate's output), and with feature detection off
+// (feature_angle_deg = 180, the boundary rule before features, no repair:
+// "no features").
 //
 //   benchmark_frame_quality [size_fraction=F] [INPUT ...]
 //
@@ -24,6 +25,7 @@
 // the bounding-box diagonal (default 1/20, generate's default).
 #include <CGAL_ext/Frame_field_3.h>
 #include <CGAL_ext/Frame_field_matchings_3.h>
+#include <CGAL_ext/Frame_field_repair_3.h>
 #include <CGAL_ext/Frame_field_singularities_3.h>
 #include <CGAL_ext/IO/Medit_mesh.h>
 #include <CGAL_ext/Metric_field_3.h>
@@ -94,17 +96,16 @@ struct Quality {
   double seconds_field = 0;
 };
 
-Quality measure(const Tr& tr, const Field& field, double feature_angle_deg) {
+// The measures of a computed field; `seconds`: the time it took (the time
+// of the matchings and singular curves is added).
+Quality measure(const Tr& tr, const Field& field, const Frames& ff, double seconds) {
   Quality q;
   const auto t = std::chrono::steady_clock::now();
-  Frames ff(field);
-  CGAL_ext::Frame_field_options options;
-  options.feature_angle_deg = feature_angle_deg;
-  const CGAL_ext::Frame_field_statistics& st = ff.compute(options);
+  const CGAL_ext::Frame_field_statistics& st = ff.statistics();
   const CGAL_ext::Frame_field_matchings_3<Frames> matchings(ff);
   const auto edges = CGAL_ext::singular_edges(ff, matchings);
   const CGAL_ext::Singularity_graph graph = CGAL_ext::singularity_graph(ff, edges);
-  q.seconds_field = since(t);
+  q.seconds_field = seconds + since(t);
 
   q.tets = ff.size();
   q.singular = edges.size();
@@ -196,13 +197,14 @@ int main(int argc, char** argv) {
         inputs.push_back(std::string(dir) + "/" + model + ".off");
   }
   std::printf("Frame-field quality with generate's default options (identity metric, Frame_field_options()), %d threads,\n"
-              "with the default feature angle (features) and with features off (no features) on the same mesh.\n"
+              "before and after the repair of non-meshable edges (no repair, repaired: generate's output), and with\n"
+              "features off and no repair (no features), on the same mesh.\n"
               "Singular edges: all, +1/4, -1/4, non-meshable (neither quarter turn about the edge); curves, nodes, curves\n"
               "ending inside the volume; face angle between matched neighbouring frames (deg); energy per unit face\n"
               "weight; boundary alignment error (deg); feature edges and corners (at the default angle); angle between\n"
               "a feature edge and the nearest frame axis (deg, mean and max over tetrahedra at feature edges); singular\n"
               "edges at a feature vertex (f.sing) and, of them, along the surface (f.surf); seconds for the mesh (Mesh_3\n"
-              "or reading) and for the field (frames, matchings, singular curves).\n\n",
+              "or reading) and for the field (frames, repair, matchings, singular curves).\n\n",
               tbb::info::default_concurrency());
   std::printf("%-22s %-11s %8s %6s %5s %5s %5s %6s %5s %6s %8s %8s %8s %7s %7s %6s %6s %7s %7s %5s %5s %7s %7s\n",
               "model", "variant", "tets", "sing", "+1/4", "-1/4", "nonm", "curves", "nodes", "in-end", "ang.mean",
@@ -218,8 +220,21 @@ int main(int argc, char** argv) {
       CGAL_ext::build_triangulation_from_tets(mesh.vertices, mesh.tetrahedra, mesh.tetrahedron_references, tr);
       const Field field(tr, Eigen::Matrix3d::Identity().eval());
       const double seconds_mesh = since(t);
-      print_row(name, "features", measure(tr, field, CGAL_ext::Frame_field_options().feature_angle_deg), seconds_mesh);
-      print_row(name, "no features", measure(tr, field, 180), seconds_mesh);
+      // Generate's default: features, then the repair of non-meshable edges.
+      auto t_field = std::chrono::steady_clock::now();
+      Frames ff(field);
+      ff.compute();
+      const double seconds_compute = since(t_field);
+      print_row(name, "no repair", measure(tr, field, ff, seconds_compute), seconds_mesh);
+      t_field = std::chrono::steady_clock::now();
+      CGAL_ext::repair_singularities(ff);
+      print_row(name, "repaired", measure(tr, field, ff, seconds_compute + since(t_field)), seconds_mesh);
+      t_field = std::chrono::steady_clock::now();
+      Frames plain(field);
+      CGAL_ext::Frame_field_options options;
+      options.feature_angle_deg = 180;
+      plain.compute(options);
+      print_row(name, "no features", measure(tr, field, plain, since(t_field)), seconds_mesh);
     } catch (const std::exception& e) {
       std::printf("%-22s error: %s\n", name.c_str(), e.what());
       ++failures;

@@ -162,7 +162,7 @@ TEST_CASE("generate with a constant metric: gradients are the rows of A, scaled 
   for (const double h : {0.0, 0.5}) {
     const auto out = work / (h > 0 ? "aniso_h" : "aniso_out");
     const Run r = run("generate " + l_shape + " --metric-const '1 0 16 0 0 4'" +
-                      (h > 0 ? std::string(" --hex-size 0.5") : std::string()) + " -o " + out.string());
+                      (h > 0 ? std::string(" --hex-size 0.5 --no-repair") : std::string()) + " -o " + out.string());
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
     const double s = h > 0 ? 1 / h : 1; // a given metric is used as it is without --hex-size
@@ -184,6 +184,8 @@ TEST_CASE("generate with a constant metric: gradients are the rows of A, scaled 
     CHECK(number_after(report, "expected_hexes") == Approx(6 * 8 * s * s * s).epsilon(1e-12));
     if (h > 0) CHECK(number_after(report, "hex_size") == 0.5);
     else CHECK(report.find("\"hex_size\": null") != std::string::npos);
+    CHECK((report.find("\"repair\": null") != std::string::npos) == (h > 0)); // --no-repair
+    CHECK((r.err.find("[stage] repair") != std::string::npos) == (h == 0));
   }
 }
 
@@ -368,6 +370,10 @@ TEST_CASE("generate meshes a built-in shape with Mesh_3", "[cli][generate]") {
   double meshable = 0;
   for (double m : sing.cell_data.at("meshable").values) meshable += m;
   CHECK(edges - meshable == number_after(report, "non_meshable_edges"));
+  // The repair ran and its report agrees with the field written.
+  CHECK(r.err.find("[stage] repair") != std::string::npos);
+  CHECK(number_after(report, "non_meshable_after") == number_after(report, "non_meshable_edges"));
+  CHECK(number_after(report, "non_meshable_after") <= number_after(report, "non_meshable_before"));
   for (double c : sing.cell_data.at("curve").values) CHECK(c >= 1);
   CHECK(sing.point_data.at("node").values.size() == sing.number_of_points);
   CHECK(sing.point_data.at("vertex_index").values.size() == sing.number_of_points);

@@ -6,9 +6,11 @@
 // and across the edge, half and third turns) are typed and located exactly;
 // the types do not depend on how the mesh is numbered; singular edges group
 // into curves and nodes; and the .perm file alone gives back exactly the
-// singular edges (holonomy recomputed from it the way CubeCover does).
+// singular edges (holonomy recomputed from it the way CubeCover does); and
+// repair_singularities() removes non-meshable edges made on purpose.
 #include <CGAL_ext/Frame_field_3.h>
 #include <CGAL_ext/Frame_field_matchings_3.h>
+#include <CGAL_ext/Frame_field_repair_3.h>
 #include <CGAL_ext/Frame_field_singularities_3.h>
 #include <CGAL_ext/IO/Perm_file.h>
 #include <CGAL_ext/Metric_field_3.h>
@@ -18,6 +20,7 @@
 #include "reference/degenerate_test_meshes.h"
 
 #include <catch2/catch.hpp>
+#include <tbb/global_control.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -625,4 +628,89 @@ TEST_CASE("singular curves partition the singular edges and end at nodes", "[sin
   CHECK(std::all_of(seen.begin(), seen.end(), [](int n) { return n == 1; }));
   CHECK(g.boundary_ends + g.interior_ends + g.junctions == g.nodes.size());
   CHECK(g.interior_ends == 0); // a smooth field's singular curves do not stop inside
+}
+
+namespace {
+
+std::size_t count_non_meshable(const std::vector<Singular_edge>& sing) {
+  return std::size_t(std::count_if(sing.begin(), sing.end(), [](const Singular_edge& e) { return !is_meshable(e.type); }));
+}
+
+// The field compute() makes on a 6 x 6 x 6 grid of unit cubes (the identity
+// frames: no singular edge), with the frames of the tetrahedra within 1.6 of
+// the centre twisted by a third of a turn about the cube diagonal around the
+// vertical line x = y = 3: a defect that no outer frame forces.
+std::unique_ptr<Setup> corrupted_grid_field() {
+  auto s = std::make_unique<Setup>();
+  s->m = testing::kuhn_grid(6, 6, 6, 1.0);
+  build_triangulation_from_tets(s->m.points, s->m.tets, {}, s->tr);
+  s->field = std::make_unique<Field>(s->tr, Eigen::Matrix3d::Identity().eval());
+  s->ff = std::make_unique<Frames>(*s->field);
+  s->ff->compute();
+  const Eigen::Vector3d centre(3, 3, 3);
+  for (std::size_t i = 0; i < s->ff->size(); ++i) {
+    const Eigen::Vector3d c = s->ff->centroid(i);
+    if ((c - centre).norm() > 1.6) continue;
+    const double a = std::atan2(c(1) - 3, c(0) - 3);
+    s->ff->set_rotation(i, Eigen::Quaterniond(Eigen::AngleAxisd(a / 3, Eigen::Vector3d(1, 1, 1).normalized())));
+  }
+  s->ff->update_statistics();
+  return s;
+}
+
+} // namespace
+
+TEST_CASE("a field built with non-meshable edges is repaired", "[singularities][repair]") {
+  const auto s = corrupted_grid_field();
+  Frames& ff = *s->ff;
+  const std::size_t before = count_non_meshable(singular_edges(ff));
+  REQUIRE(before > 0);
+  const double energy_before = ff.smoothness_energy();
+  std::vector<Eigen::Quaterniond> q_before(ff.size());
+  for (std::size_t i = 0; i < ff.size(); ++i) q_before[i] = ff.rotation_quaternion(i);
+
+  const Singularity_repair_report r = repair_singularities(ff);
+  INFO("rounds " << r.rounds << ", regions " << r.regions_accepted << " of " << r.regions_tried);
+  CHECK(r.non_meshable_before == before);
+  const std::vector<Singular_edge> after = singular_edges(ff);
+  CHECK(r.non_meshable_after == count_non_meshable(after));
+  CHECK(r.non_meshable_after == 0);
+  CHECK(after.empty()); // the surrounding identity frames force no singularity at all
+  CHECK(r.regions_accepted > 0);
+  CHECK(r.energy_before == Approx(energy_before));
+  CHECK(r.energy_after == ff.smoothness_energy());
+  CHECK(ff.statistics().smoothness_energy == r.energy_after);
+  // Twisted frames far from every non-meshable edge (turned by nearly 0 or
+  // 120 degrees, which match the identity) are left: the energy drops by
+  // far more than an order of magnitude, not to zero.
+  CHECK(r.energy_after < 0.05 * energy_before);
+  // Only the regions kept moved: the frames of all other tetrahedra are the
+  // same bits.
+  std::size_t changed = 0;
+  for (std::size_t i = 0; i < ff.size(); ++i) changed += ff.rotation_quaternion(i).coeffs() != q_before[i].coeffs();
+  CHECK(changed > 0);
+  CHECK(changed <= r.tets_changed);
+  CHECK(r.tets_changed < ff.size());
+}
+
+TEST_CASE("the repair does not depend on the thread count", "[singularities][repair]") {
+  std::vector<std::vector<Eigen::Quaterniond>> results;
+  std::vector<Singularity_repair_report> reports;
+  for (int threads : {1, 2}) {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, threads);
+    const auto s = computed_ball_field();
+    reports.push_back(repair_singularities(*s->ff));
+    std::vector<Eigen::Quaterniond> q(s->ff->size());
+    for (std::size_t i = 0; i < q.size(); ++i) q[i] = s->ff->rotation_quaternion(i);
+    results.push_back(q);
+    // Never worse than before, and the report says what the field has.
+    const std::size_t now = count_non_meshable(singular_edges(*s->ff));
+    CHECK(now == reports.back().non_meshable_after);
+    CHECK(reports.back().non_meshable_after <= reports.back().non_meshable_before);
+    CHECK((reports.back().regions_accepted > 0) == (now < reports.back().non_meshable_before));
+  }
+  CHECK(reports[0].non_meshable_after == reports[1].non_meshable_after);
+  CHECK(reports[0].regions_accepted == reports[1].regions_accepted);
+  REQUIRE(results[0].size() == results[1].size());
+  for (std::size_t i = 0; i < results[0].size(); ++i) CHECK(results[0][i].coeffs() == results[1][i].coeffs());
 }

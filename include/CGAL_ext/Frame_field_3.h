@@ -53,12 +53,12 @@ struct Frame_field_options {
   bool hard_boundary = true;
   /// The feature angle in degrees (`Sharp_features_3`): boundary edges whose
   /// facets' normals differ by more than this, in the metric, are feature
-  /// edges. With `hard_boundary`, the tetrahedra at a feature edge or curve
-  /// keep an axis on its direction, and those at a corner the corner's
-  /// frame. 40 degrees keeps 45-degree chamfers and leaves the facets of
-  /// smooth surfaces meshed at a tenth of their radius (about 6 degrees
-  /// apart) alone; 180 turns feature detection off (except where parts of
-  /// the domain meet along an edge).
+  /// edges. With `hard_boundary`, the tetrahedra at a feature edge keep an
+  /// axis on its smooth tangent, and those at a corner the corner's frame.
+  /// 40 degrees keeps 45-degree chamfers; on Mesh_3's smooth models at the
+  /// default size the few facets more than 40 degrees apart form lone kinks,
+  /// which are dropped (doc/sharp_features.md). 180 turns feature detection
+  /// off (except where parts of the domain meet along an edge).
   double feature_angle_deg = 40;
   /// Tolerance in radians of each face transport `T(i->j)`.
   double transport_tolerance = 1e-6;
@@ -105,8 +105,8 @@ struct Frame_field_statistics {
   std::size_t hard_one_axis = 0, hard_two_axes = 0;
   /// Feature edges, vertices on feature curves and corners (`Sharp_features_3`).
   std::size_t feature_edges = 0, feature_curve_vertices = 0, feature_corners = 0;
-  /// Tetrahedra whose hard axes come from a feature: a corner's frame, a
-  /// feature edge's direction or a feature curve's tangent at a vertex.
+  /// Tetrahedra whose hard axes come from a feature: a corner's frame or a
+  /// feature edge's tangent.
   std::size_t feature_tets = 0;
   /// Face transports that are exactly the identity (constant metric).
   std::size_t identity_transports = 0;
@@ -347,12 +347,9 @@ public:
     prepare(opt_);
     q_.assign(size(), Eigen::Quaterniond::Identity());
     s_.assign(size(), Sh_vector::Zero());
-    for (std::size_t i = 0; i < size(); ++i) {
-      q_[i] = Eigen::Quaterniond(Eigen::Matrix3d(rotation_of(i))).normalized();
-      s_[i] = rotate_sh(q_[i], octahedral_reference_sh());
-    }
-    stats_.smoothness_energy = smoothness_energy();
-    measure();
+    for (std::size_t i = 0; i < size(); ++i)
+      set_rotation(i, Eigen::Quaterniond(Eigen::Matrix3d(rotation_of(i))).normalized());
+    update_statistics();
   }
 
   /// The statistics of the last `compute()`.
@@ -436,6 +433,107 @@ public:
     return std::ldexp(internal_units, weight_exponent_);
   }
 
+  /// How `reoptimize()` starts.
+  enum class Reoptimize_start {
+    /// As `compute()`: the linear initialisation of the SH vectors (the
+    /// quadratic energy with the other frames as boundary values, solved to
+    /// a relative residual of 1e-8), projected onto rotations.
+    relaxed,
+    /// Each frame transported from its neighbour nearest to the outside
+    /// (breadth-first through faces from all the fixed neighbours at once),
+    /// so that the mismatches start on the seams where the fronts meet.
+    propagated
+  };
+
+  /// Re-optimises the frames of some tetrahedra, all others fixed, as
+  /// `compute()` does globally: a start (see `Reoptimize_start`) with the
+  /// hard constraints applied, then L-BFGS on their rotations. The result
+  /// depends on the surrounding frames, not on the previous frames of the
+  /// tetrahedra given. The statistics are not updated (see
+  /// `update_statistics()`). Used by `repair_singularities()`.
+  /// \param tets the tetrahedron indices to re-optimise (distinct)
+  /// \param start how the frames start
+  /// \returns the L-BFGS iterations
+  int reoptimize(const std::vector<std::size_t>& tets, Reoptimize_start start = Reoptimize_start::relaxed) {
+    prepare(opt_);
+    const std::size_t m = tets.size();
+    if (m == 0) return 0;
+    Active_set set;
+    set.list = &tets;
+    set.n = m;
+    set.marked.assign(size(), 0);
+    std::vector<std::size_t> local(size(), std::size_t(-1));
+    for (std::size_t k = 0; k < m; ++k) set.marked[tets[k]] = 1, local[tets[k]] = k;
+    const Sh_vector s0 = octahedral_reference_sh();
+    if (start == Reoptimize_start::propagated && propagate(tets, set.marked)) {
+      internal::parallel_for_each_index(m, [&](std::size_t k) {
+        const std::size_t i = tets[k];
+        if (opt_.hard_boundary && constraint_of_[i] >= 0) q_[i] = snap(q_[i], constraints_[constraint_of_[i]]);
+        s_[i] = rotate_sh(q_[i], s0);
+      });
+      int evaluations = 0;
+      bool limit = false;
+      return lbfgs(set, evaluations, limit, nullptr);
+    }
+    // The linear initialisation on the list: H x = b with the frames
+    // outside on the right-hand side.
+    std::vector<Sh_vector> x(m, Sh_vector::Zero()), b(m, Sh_vector::Zero());
+    internal::parallel_for_each_index(m, [&](std::size_t k) {
+      const std::size_t i = tets[k];
+      if (constraint_of_[i] >= 0) b[k] = constraints_[constraint_of_[i]].b;
+      for (int f = 0; f < 4; ++f)
+        if (links_[i].nb[f] >= 0 && !set.marked[links_[i].nb[f]]) b[k] += links_[i].w[f] * neighbour_sh(i, f, s_);
+    });
+    auto apply = [&](const std::vector<Sh_vector>& v, std::vector<Sh_vector>& y) {
+      internal::parallel_for_each_index(m, [&](std::size_t k) {
+        const std::size_t i = tets[k];
+        const Links& L = links_[i];
+        Sh_vector r = diagonal_[i] * v[k];
+        for (int f = 0; f < 4; ++f) {
+          if (L.nb[f] < 0 || !set.marked[L.nb[f]]) continue;
+          const Sh_vector& vj = v[local[L.nb[f]]];
+          r -= L.w[f] * (L.identity[f] ? vj : Sh_vector(rotate_sh(L.T_in[f], vj)));
+        }
+        if (constraint_of_[i] >= 0) r += constraints_[constraint_of_[i]].B * v[k];
+        y[k] = r;
+      });
+    };
+    double residual = 0;
+    pcg(x, b, apply, [&](std::size_t k, const Sh_vector& r) { return precondition(tets[k], r); }, 1e-8, nullptr,
+        residual);
+    internal::parallel_for_each_index(m, [&](std::size_t k) {
+      const std::size_t i = tets[k];
+      if (x[k].norm() > 1e-9) q_[i] = Eigen::Quaterniond(rotation_from_octahedral_sh(x[k]).rotation);
+      if (opt_.hard_boundary && constraint_of_[i] >= 0) q_[i] = snap(q_[i], constraints_[constraint_of_[i]]);
+      s_[i] = rotate_sh(q_[i], s0);
+    });
+    int evaluations = 0;
+    bool limit = false;
+    return lbfgs(set, evaluations, limit, nullptr);
+  }
+
+  /// The rotation `R_i` as the unit quaternion the optimiser holds (any
+  /// representative of `{R_i G}`; `rotation()` gives the canonical one).
+  /// \param i a tetrahedron index
+  const Eigen::Quaterniond& rotation_quaternion(std::size_t i) const { return q_[i]; }
+
+  /// Sets the rotation of one tetrahedron (e.g. to restore a value of
+  /// `rotation_quaternion()`). The statistics are not updated (see
+  /// `update_statistics()`).
+  /// \param i a tetrahedron index
+  /// \param q a unit quaternion
+  void set_rotation(std::size_t i, const Eigen::Quaterniond& q) {
+    q_[i] = q;
+    s_[i] = rotate_sh(q_[i], octahedral_reference_sh());
+  }
+
+  /// Recomputes the smoothness energy, boundary alignment and
+  /// orthonormality of the statistics from the current frames.
+  void update_statistics() {
+    stats_.smoothness_energy = smoothness_energy();
+    measure();
+  }
+
 private:
   struct Timer {
     std::chrono::steady_clock::time_point last = std::chrono::steady_clock::now();
@@ -488,7 +586,7 @@ private:
     Eigen::Vector3d u1 = Eigen::Vector3d::Zero(), u2 = Eigen::Vector3d::Zero();
   };
   template <class Features>
-  Feature_axes feature_axes(std::size_t i, const Features& features, double unit) const {
+  Feature_axes feature_axes(std::size_t i, const Features& features, double unit, double cos_feature) const {
     Feature_axes out;
     const Cell_handle c = cells_[i];
     std::array<std::size_t, 4> v;
@@ -502,7 +600,6 @@ private:
         out.u2 = features.corner_axes(v[k]).col(1);
         return out;
       }
-    const double cos_feature = std::cos(opt_.feature_angle_deg * M_PI / 180);
     for (int a = 0; a < 4; ++a)
       for (int b = a + 1; b < 4; ++b) {
         const std::size_t p = v[by_index[a]], q = v[by_index[b]];
@@ -610,7 +707,7 @@ private:
         links_[i].w[f] = opt_.boundary_weight * scaled_area.back() / (Af * (fc - centroid_[i])).norm();
         boundary_.push_back(bf);
       }
-      const Feature_axes fa = feature_axes(i, features, unit);
+      const Feature_axes fa = feature_axes(i, features, unit, cos_feature);
       if (boundary_.size() == first && fa.axes == 0) continue;
       Constraint C;
       // A soft term: the frame should have an axis on d (rotation about d free).
@@ -644,10 +741,10 @@ private:
         } else {
           // The rotation about the tangent, from the boundary faces: their
           // normals, projected orthogonally to the tangent, at angles
-          // theta_k from the largest one's. If they agree (each within the
-          // feature angle of an axis of the largest face's frame), the
-          // largest face is followed exactly and the tangent as far as it
-          // allows. Faces on both sides of a crease disagree: the frame then
+          // theta_k from the largest one's (faces within 30 degrees of the
+          // tangent say nothing and are skipped). If they agree (each within
+          // the feature angle of an axis of that face's frame), that face is
+          // followed exactly and the tangent as far as it allows. Faces on both sides of a crease disagree: the frame then
           // takes the mean of the theta_k modulo a quarter turn, arg(sum
           // e^{4 i theta_k}) / 4, which shares the crease's angle between
           // them (22.5 degrees each on a 45-degree crease, where following
@@ -655,6 +752,7 @@ private:
           // terms cannot decide it: on a 45-degree crease their sum does not
           // depend on the rotation.
           Eigen::Vector3d p1 = Eigen::Vector3d::Zero();
+          std::size_t face1 = 0; // the face p1 comes from
           bool agree = true;
           std::complex<double> sum = 0;
           for (std::size_t k : order) {
@@ -662,14 +760,14 @@ private:
             Eigen::Vector3d p = d - d.dot(C.d1) * C.d1;
             if (p.norm() < 0.5) continue; // within 30 degrees of the tangent: says nothing about the rotation
             p.normalize();
-            if (p1.isZero()) p1 = p;
+            if (p1.isZero()) p1 = p, face1 = k;
             const double theta = std::atan2(p.dot(C.d1.cross(p1)), p.dot(p1));
             sum += std::polar(1.0, 4 * theta);
             agree = agree && std::max(std::abs(p.dot(p1)), std::abs(p.dot(C.d1.cross(p1)))) >= cos_feature;
           }
           if (!p1.isZero() && agree) {
             const Eigen::Vector3d t = C.d1;
-            C.d1 = boundary_[order[0]].direction;
+            C.d1 = boundary_[face1].direction;
             C.d2 = (t - t.dot(C.d1) * C.d1).normalized();
             C.axes = 2;
           } else if (!p1.isZero()) {
@@ -1041,34 +1139,84 @@ private:
     return e;
   }
 
-  // The refinement energy (smoothness + soft boundary terms) and its gradient
-  // in the left-trivialised rotation increments, projected on the free axes.
-  double energy_and_gradient(const std::vector<Sh_vector>& s, std::vector<Eigen::Vector3d>* g) const {
-    return internal::deterministic_sum(size(), [&](std::size_t first, std::size_t last) {
+  // The `propagated` start of reoptimize(): breadth-first from the fixed
+  // neighbours, each frame transported from the tetrahedron that reached it
+  // (its first facet towards one). False, with nothing changed, if no fixed
+  // neighbour reaches some of the tetrahedra.
+  bool propagate(const std::vector<std::size_t>& tets, const std::vector<char>& marked) {
+    std::vector<std::size_t> queue;
+    std::vector<char> done(tets.size(), 0);
+    std::vector<std::int64_t> local(size(), -1);
+    for (std::size_t k = 0; k < tets.size(); ++k) local[tets[k]] = std::int64_t(k);
+    std::vector<Eigen::Quaterniond> q(tets.size());
+    auto reach = [&](std::size_t k, std::size_t i, int f, const Eigen::Quaterniond& from) {
+      q[k] = links_[i].identity[f] ? from : (links_[i].T_in[f] * from).normalized();
+      done[k] = 1;
+      queue.push_back(k);
+    };
+    for (std::size_t k = 0; k < tets.size(); ++k)
+      for (int f = 0; f < 4; ++f) {
+        const std::int64_t j = links_[tets[k]].nb[f];
+        if (j >= 0 && !marked[j]) {
+          reach(k, tets[k], f, q_[j]);
+          break;
+        }
+      }
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      const std::size_t i = tets[queue[head]];
+      for (int f = 0; f < 4; ++f) {
+        const std::int64_t j = links_[i].nb[f];
+        if (j < 0 || local[j] < 0 || done[local[j]]) continue;
+        const int fj = cells_[j]->index(cells_[i]);
+        reach(std::size_t(local[j]), std::size_t(j), fj, q[queue[head]]);
+      }
+    }
+    if (queue.size() < tets.size()) return false;
+    for (std::size_t k = 0; k < tets.size(); ++k) q_[tets[k]] = q[k];
+    return true;
+  }
+
+  // The tetrahedra an L-BFGS run turns: all of them, or a list (the others
+  // fixed, their faces with the list counted once, from the list's side).
+  struct Active_set {
+    const std::vector<std::size_t>* list = nullptr; // null: all
+    std::vector<char> marked;                        // per tetrahedron, with a list
+    std::size_t n = 0;
+    std::size_t tet(std::size_t k) const { return list ? (*list)[k] : k; }
+    bool active(std::int64_t j) const { return !list || marked[std::size_t(j)]; }
+  };
+
+  // The refinement energy (smoothness + soft boundary terms) of the active
+  // tetrahedra and its gradient in their left-trivialised rotation
+  // increments, projected on the free axes; the frames are s_.
+  double energy_and_gradient(const Active_set& set, std::vector<Eigen::Vector3d>* g) const {
+    return internal::deterministic_sum(set.n, [&](std::size_t first, std::size_t last) {
       double e = 0;
-      for (std::size_t i = first; i < last; ++i) {
+      for (std::size_t k = first; k < last; ++k) {
+        const std::size_t i = set.tet(k);
         const Links& L = links_[i];
         Sh_vector grad = Sh_vector::Zero();
         for (int f = 0; f < 4; ++f) {
           if (L.nb[f] < 0) continue;
-          const Sh_vector r = s[i] - neighbour_sh(i, f, s);
-          e += 0.5 * L.w[f] * r.squaredNorm(); // each face seen from both sides
+          const Sh_vector r = s_[i] - neighbour_sh(i, f, s_);
+          // A face between two active tetrahedra is seen from both sides.
+          e += (set.active(L.nb[f]) ? 0.5 : 1.0) * L.w[f] * r.squaredNorm();
           grad += (2 * L.w[f]) * r;
         }
-        const std::int64_t k = constraint_of_[i];
-        if (k >= 0) {
-          const Constraint& C = constraints_[k];
-          const Sh_vector Bs = C.B * s[i];
-          e += s[i].dot(Bs) - 2 * C.b.dot(s[i]) + C.c;
+        const std::int64_t c = constraint_of_[i];
+        if (c >= 0) {
+          const Constraint& C = constraints_[c];
+          const Sh_vector Bs = C.B * s_[i];
+          e += s_[i].dot(Bs) - 2 * C.b.dot(s_[i]) + C.c;
           grad += 2 * (Bs - C.b);
         }
         if (g) {
-          Eigen::Vector3d gi = sh_rotation_jacobian(s[i]).transpose() * grad;
-          if (opt_.hard_boundary && k >= 0) {
-            const Constraint& C = constraints_[k];
+          Eigen::Vector3d gi = sh_rotation_jacobian(s_[i]).transpose() * grad;
+          if (opt_.hard_boundary && c >= 0) {
+            const Constraint& C = constraints_[c];
             gi = C.axes == 2 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(gi.dot(C.d1) * C.d1);
           }
-          (*g)[i] = gi;
+          (*g)[k] = gi;
         }
       }
       return e;
@@ -1076,15 +1224,27 @@ private:
   }
 
   void refine() {
-    const std::size_t n = size();
-    stats_.refinement_iterations = 0;
-    stats_.energy_evaluations = 0;
-    stats_.refinement_iteration_limit_reached = false;
-    if (opt_.max_refinement_iterations <= 0) return;
+    Active_set all;
+    all.n = size();
+    int evaluations = 0;
+    stats_.refinement_iterations = lbfgs(all, evaluations, stats_.refinement_iteration_limit_reached, "refinement");
+    stats_.energy_evaluations = evaluations;
+  }
+
+  // L-BFGS on the rotations of the active tetrahedra, until the energy
+  // converges (see `energy_tolerance`). Returns the iterations; `evaluations`
+  // gets the energy evaluations, `limit` whether the iteration bound stopped
+  // it. `stage` names the iterations for the progress callback (or null).
+  int lbfgs(const Active_set& set, int& evaluations, bool& limit, const char* stage) {
+    const std::size_t n = set.n;
+    int iterations = 0;
+    evaluations = 0;
+    limit = false;
+    if (opt_.max_refinement_iterations <= 0 || n == 0) return 0;
     const Sh_vector s0 = octahedral_reference_sh();
     std::vector<Eigen::Vector3d> g(n), g_new(n), p(n);
-    double E = energy_and_gradient(s_, &g);
-    ++stats_.energy_evaluations;
+    double E = energy_and_gradient(set, &g);
+    ++evaluations;
     const double floor_energy = 1e-14 * std::max(total_weight_, 1e-300);
     const int m = std::max(1, opt_.lbfgs_memory);
     // History in a ring of m preallocated slots, oldest first in `order`;
@@ -1092,26 +1252,34 @@ private:
     std::vector<std::vector<Eigen::Vector3d>> S, Y;
     std::vector<int> order;
     std::vector<double> rho(m), gamma_of(m);
-    std::vector<Eigen::Quaterniond> q_new(n);
-    std::vector<Sh_vector> s_new(n);
+    // The accepted rotations; trial steps are written into q_ and s_.
+    std::vector<Eigen::Quaterniond> q_old(n);
+    for (std::size_t k = 0; k < n; ++k) q_old[k] = q_[set.tet(k)];
     int small_steps = 0;
     // d^2 E / dw_i^2 ~ 2 (sum of the weights of i) J^T J, and J^T J = (20/3) I.
     std::vector<double> inverse_diagonal(n);
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t k = 0; k < n; ++k) {
       double sum = 0;
-      for (int f = 0; f < 4; ++f) sum += links_[i].w[f];
-      inverse_diagonal[i] = sum > 0 ? 3 / (40 * sum) : 1;
+      for (int f = 0; f < 4; ++f) sum += links_[set.tet(k)].w[f];
+      inverse_diagonal[k] = sum > 0 ? 3 / (40 * sum) : 1;
     }
-    // One pass over the tetrahedra: update(i), then the sum of value(i) on
-    // the updated data (fixed blocks: deterministic).
+    // One pass over the active tetrahedra: update(k), then the sum of
+    // value(k) on the updated data (fixed blocks: deterministic).
     auto pass = [&](auto&& update, auto&& value) {
       return internal::deterministic_sum(n, [&](std::size_t first, std::size_t last) {
         double sum = 0;
-        for (std::size_t i = first; i < last; ++i) {
-          update(i);
-          sum += value(i);
+        for (std::size_t k = first; k < last; ++k) {
+          update(k);
+          sum += value(k);
         }
         return sum;
+      });
+    };
+    auto set_frames = [&](double step) {
+      internal::parallel_for_each_index(n, [&](std::size_t k) {
+        const std::size_t i = set.tet(k);
+        q_[i] = step == 0 ? q_old[k] : (internal::oct_quaternion_exp(step * p[k]) * q_old[k]).normalized();
+        s_[i] = rotate_sh(q_[i], s0);
       });
     };
     for (int it = 0; it < opt_.max_refinement_iterations; ++it) {
@@ -1159,20 +1327,20 @@ private:
       double E_new = E;
       bool accepted = false;
       for (int ls = 0; ls < 40; ++ls) {
-        internal::parallel_for_each_index(n, [&](std::size_t i) {
-          q_new[i] = (internal::oct_quaternion_exp(step * p[i]) * q_[i]).normalized();
-          s_new[i] = rotate_sh(q_new[i], s0);
-        });
-        E_new = energy_and_gradient(s_new, &g_new);
-        ++stats_.energy_evaluations;
+        set_frames(step);
+        E_new = energy_and_gradient(set, &g_new);
+        ++evaluations;
         if (E_new <= E + 1e-4 * step * slope) {
           accepted = true;
           break;
         }
         step *= 0.5;
       }
-      if (!accepted) break;
-      ++stats_.refinement_iterations;
+      if (!accepted) {
+        set_frames(0);
+        break;
+      }
+      ++iterations;
       // The new pair goes into a free slot (or the oldest one's), kept only
       // if the curvature s.y is positive.
       int slot;
@@ -1213,23 +1381,24 @@ private:
         gamma_of[slot] = sums[0] / sums[3];
         order.push_back(slot);
       }
-      std::swap(q_, q_new);
-      std::swap(s_, s_new);
+      internal::parallel_for_each_index(n, [&](std::size_t k) { q_old[k] = q_[set.tet(k)]; });
       std::swap(g, g_new);
       const double decrease = E - E_new;
       E = E_new;
-      if (opt_.iteration_progress) opt_.iteration_progress("refinement", it + 1, std::ldexp(E, weight_exponent_));
+      if (stage && opt_.iteration_progress) opt_.iteration_progress(stage, it + 1, std::ldexp(E, weight_exponent_));
       small_steps = decrease <= opt_.energy_tolerance * E ? small_steps + 1 : 0;
       if (small_steps >= 3) break;
-      if (it + 1 == opt_.max_refinement_iterations) stats_.refinement_iteration_limit_reached = true;
+      if (it + 1 == opt_.max_refinement_iterations) limit = true;
     }
     if (opt_.hard_boundary) // undo the rounding drift of the constrained axes
-      internal::parallel_for_each_index(n, [&](std::size_t i) {
+      internal::parallel_for_each_index(n, [&](std::size_t k) {
+        const std::size_t i = set.tet(k);
         if (constraint_of_[i] >= 0) {
           q_[i] = snap(q_[i], constraints_[constraint_of_[i]]);
           s_[i] = rotate_sh(q_[i], s0);
         }
       });
+    return iterations;
   }
 
   void measure() {

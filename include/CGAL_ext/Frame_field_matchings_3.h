@@ -60,22 +60,22 @@ public:
     const std::size_t n = ff.size();
     internal::parallel_for_each_index(n, [&](std::size_t i) { rotation_[i] = ff.rotation(i); });
     internal::parallel_for_each_index(n, [&](std::size_t i) {
-      for (int f = 0; f < 4; ++f) {
-        const std::int64_t j = ff.neighbor(i, f);
-        if (j < 0) {
-          index_[i][f] = -1;
-          continue;
-        }
-        // The face is matched from the smaller index; the larger one takes
-        // the inverse (G^T), found in the group table.
-        const bool first = std::size_t(j) > i;
-        const std::size_t a = first ? i : std::size_t(j), b = first ? std::size_t(j) : i;
-        const int fb = first ? mirror_facet(ff, i, f) : f; // facet of b towards a
-        const Eigen::Matrix3d T = ff.transport_into(b, fb); // T(a->b)
-        const int k = closest_octahedral_matching(T * rotation_[a], rotation_[b]).index;
-        index_[i][f] = std::int8_t(first ? k : inverse_index(k));
-      }
+      for (int f = 0; f < 4; ++f) index_[i][f] = match(ff, i, f);
     });
+  }
+
+  /// Recomputes the matchings of the faces of some tetrahedra (from both
+  /// sides) after their frames changed; the same as computing all again.
+  /// \param ff the frame field the matchings were computed from
+  /// \param tets the tetrahedra whose rotations changed
+  void update(const Frame_field& ff, const std::vector<std::size_t>& tets) {
+    for (std::size_t i : tets) rotation_[i] = ff.rotation(i);
+    for (std::size_t i : tets)
+      for (int f = 0; f < 4; ++f) {
+        index_[i][f] = match(ff, i, f);
+        const std::int64_t j = ff.neighbor(i, f);
+        if (j >= 0) index_[std::size_t(j)][mirror_facet(ff, i, f)] = std::int8_t(inverse_index(index_[i][f]));
+      }
   }
 
   /// The number of tetrahedra.
@@ -183,6 +183,20 @@ public:
   }
 
 private:
+  // The matching from tetrahedron i across facet f (-1 on the boundary). The
+  // face is matched from the smaller index; the larger one takes the
+  // inverse (G^T), found in the group table.
+  std::int8_t match(const Frame_field& ff, std::size_t i, int f) const {
+    const std::int64_t j = ff.neighbor(i, f);
+    if (j < 0) return -1;
+    const bool first = std::size_t(j) > i;
+    const std::size_t a = first ? i : std::size_t(j), b = first ? std::size_t(j) : i;
+    const int fb = first ? mirror_facet(ff, i, f) : f; // facet of b towards a
+    const Eigen::Matrix3d T = ff.transport_into(b, fb); // T(a->b)
+    const int k = closest_octahedral_matching(T * rotation_[a], rotation_[b]).index;
+    return std::int8_t(first ? k : inverse_index(k));
+  }
+
   // The local facet of neighbour j = ff.neighbor(i, f) that faces i.
   static int mirror_facet(const Frame_field& ff, std::size_t i, int f) {
     return ff.cell(std::size_t(ff.neighbor(i, f)))->index(ff.cell(i));

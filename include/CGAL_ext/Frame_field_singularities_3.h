@@ -195,12 +195,38 @@ constexpr int singular_curve_direction_span = 2;
 /// \tparam Frame_field a `Frame_field_3` after `compute()`
 /// \param ff the frame field
 /// \param matchings its face matchings
+/// \param tets if given, only the edges of these tetrahedra are examined
+///        (and the curves' directions are taken along the singular edges
+///        among them): an edge whose curve stays within
+///        `singular_curve_direction_span` edges of the set gets the same type
+///        as from all edges
 /// \returns the singular edges (regular edges are not listed)
 template <class Frame_field>
-std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_field_matchings_3<Frame_field>& matchings) {
+std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_field_matchings_3<Frame_field>& matchings,
+                                          const std::vector<std::size_t>* tets = nullptr) {
   using Cell_handle = typename Frame_field::Cell_handle;
+  using Edge = typename Frame_field::Triangulation::Edge;
   const auto& field = ff.metric_field();
   const auto& tr = field.triangulation();
+  // The edges to examine: all finite edges, or those of the tetrahedra given (once each).
+  std::vector<Edge> all;
+  if (tets) {
+    std::vector<std::pair<std::array<std::size_t, 2>, Edge>> keyed;
+    for (std::size_t i : *tets) {
+      const Cell_handle c = ff.cell(i);
+      for (int a = 0; a < 4; ++a)
+        for (int b = a + 1; b < 4; ++b) {
+          std::size_t u = ff.vertex_index(c->vertex(a)), v = ff.vertex_index(c->vertex(b));
+          keyed.push_back({{std::min(u, v), std::max(u, v)}, Edge(c, a, b)});
+        }
+    }
+    std::sort(keyed.begin(), keyed.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (std::size_t k = 0; k < keyed.size(); ++k)
+      if (k == 0 || keyed[k].first != keyed[k - 1].first) all.push_back(keyed[k].second);
+  } else {
+    all.reserve(tr.number_of_finite_edges());
+    for (auto e = tr.finite_edges_begin(); e != tr.finite_edges_end(); ++e) all.push_back(*e);
+  }
   // Pass 1: the holonomy of every interior edge, and what the typing needs.
   struct Found {
     Singular_edge edge;
@@ -210,7 +236,8 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_fie
   };
   std::vector<Found> found;
   std::vector<Cell_handle> loop;
-  for (auto e = tr.finite_edges_begin(); e != tr.finite_edges_end(); ++e) {
+  for (const Edge& edge : all) {
+    const Edge* e = &edge;
     loop.clear();
     bool interior = true;
     auto circ = tr.incident_cells(*e), done = circ;

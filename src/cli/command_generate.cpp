@@ -11,6 +11,7 @@
 
 #include <CGAL_ext/Frame_field_3.h>
 #include <CGAL_ext/Frame_field_matchings_3.h>
+#include <CGAL_ext/Frame_field_repair_3.h>
 #include <CGAL_ext/Frame_field_singularities_3.h>
 #include <CGAL_ext/IO/Fra_file.h>
 #include <CGAL_ext/IO/Medit_mesh.h>
@@ -87,6 +88,8 @@ const char* generate_help =
     "                        A degrees (in the metric) are sharp features: the frames\n"
     "                        follow them, and Mesh_3 keeps them sharp (default 40;\n"
     "                        180: no features)\n"
+    "  --no-repair           keep the non-meshable singular edges the optimiser\n"
+    "                        leaves (default: re-optimise the regions around them)\n"
     "  --max-iterations N    L-BFGS iterations at most (default 1000)\n"
     "  --tol T               face transport tolerance in radians (default 1e-6)\n"
     "  --threads N           worker threads (default: all); outputs do not depend on N\n"
@@ -332,6 +335,7 @@ int command_generate(const std::vector<std::string>& args) {
     opt.feature_angle_deg = v;
   }
   mesh_opt.sharp_angle_deg = opt.feature_angle_deg; // the mesh keeps the creases the frames follow
+  const bool repair = !a.flag("--no-repair");
   if (const auto n = a.option("--max-iterations")) {
     char* end = nullptr;
     const long v = std::strtol(n->c_str(), &end, 10);
@@ -515,7 +519,21 @@ int command_generate(const std::vector<std::string>& args) {
   };
   Frames ff(*field);
   const Frame_field_statistics& st = ff.compute(opt);
-  lap();
+  lap(); // compute() reports its own stages
+  Singularity_repair_report fix;
+  if (repair) {
+    Singularity_repair_options ropt;
+    ropt.progress = [](int round, int radius, std::size_t tried, std::size_t accepted, std::size_t left) {
+      std::fprintf(stderr, "[progress] repair round %d (radius %d): %zu regions, %zu kept, %zu non-meshable edges left\n",
+                   round, radius, tried, accepted, left);
+    };
+    fix = repair_singularities(ff, ropt);
+    stage("repair", lap(),
+          std::to_string(fix.non_meshable_before) + " -> " + std::to_string(fix.non_meshable_after) +
+              " non-meshable edges; " + std::to_string(fix.regions_accepted) + " of " +
+              std::to_string(fix.regions_tried) + " regions kept, energy " + number(fix.energy_before) + " -> " +
+              number(fix.energy_after));
+  }
   const Matchings matchings(ff);
   const std::vector<Singular_edge> sing = singular_edges(ff, matchings);
   const Face_angle_statistics angles = matchings.face_angle_statistics(ff);
@@ -560,6 +578,16 @@ int command_generate(const std::vector<std::string>& args) {
      << "  \"sharp_features\": {\"angle_deg\": " << number(opt.feature_angle_deg) << ", \"edges\": " << st.feature_edges
      << ", \"curve_vertices\": " << st.feature_curve_vertices << ", \"corners\": " << st.feature_corners
      << ", \"tets\": " << st.feature_tets << "},\n"
+     << "  \"repair\": " << (repair ? "{\"non_meshable_before\": " + std::to_string(fix.non_meshable_before) +
+                                   ", \"non_meshable_after\": " + std::to_string(fix.non_meshable_after) +
+                                   ", \"rounds\": " + std::to_string(fix.rounds) +
+                                   ", \"regions_tried\": " + std::to_string(fix.regions_tried) +
+                                   ", \"regions_kept\": " + std::to_string(fix.regions_accepted) +
+                                   ", \"tets_changed\": " + std::to_string(fix.tets_changed) +
+                                   ", \"energy_before\": " + number(fix.energy_before) +
+                                   ", \"energy_after\": " + number(fix.energy_after) + "}"
+                                 : std::string("null"))
+     << ",\n"
      << "  \"max_transport_angle_deg\": " << number(st.max_transport_angle * 180 / M_PI) << ",\n"
      << "  \"linear_iterations\": " << st.linear_iterations << ",\n"
      << "  \"linear_residual\": " << number(st.linear_residual) << ",\n"
