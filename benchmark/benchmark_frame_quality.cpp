@@ -14,7 +14,18 @@
 // (feature_angle_deg = 180, the boundary rule before features, no repair:
 // "no features").
 //
-//   benchmark_frame_quality [size_fraction=F] [INPUT ...]
+//   benchmark_frame_quality [size_fraction=F] [hex_fraction=H] [INPUT ...]
+//
+// Hex columns: when the environment gives CubeCover's integer-grid tool and
+// HexEx's command-line tool, CGAL_EXT_INTEGERGRID=/path/to/integergrid and
+// CGAL_EXT_HEXEX=/path/to/hexex (built outside this project, see
+// doc/hex_meshing.md), every field is also written as generate writes it
+// (mesh.mesh, frames.fra at hexes of H times the bounding-box diagonal,
+// default 1/15, frames.perm) into a temporary directory, run through both,
+// and the hex mesh measured by scripts/hex_mesh_quality.py (python3): hexes,
+// scaled Jacobian min and median, hexes with a scaled Jacobian <= 0, and the
+// coverage (hex volume over tet volume). "MIP" marks a failed mixed-integer
+// solve of integergrid (it then writes zeros and exits 0).
 //
 // INPUT: builtin:NAME, a closed surface (.off .obj .stl .ply) meshed by
 // Mesh_3, or a tet mesh (.mesh, e.g. written by TetGen or Gmsh). Without
@@ -27,13 +38,16 @@
 #include <CGAL_ext/Frame_field_matchings_3.h>
 #include <CGAL_ext/Frame_field_repair_3.h>
 #include <CGAL_ext/Frame_field_singularities_3.h>
+#include <CGAL_ext/IO/Fra_file.h>
 #include <CGAL_ext/IO/Medit_mesh.h>
+#include <CGAL_ext/IO/Perm_file.h>
 #include <CGAL_ext/Metric_field_3.h>
 #include <CGAL_ext/Sharp_features_3.h>
 #include <CGAL_ext/build_triangulation_from_tets.h>
 #include <CGAL_ext/tetrahedralize.h>
 
 #include <tbb/info.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -42,6 +56,8 @@
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -94,11 +110,91 @@ struct Quality {
   // run along the surface (both vertices on the boundary).
   std::size_t singular_at_features = 0, singular_along_features = 0;
   double seconds_field = 0;
+  // The hex mesh of CubeCover and HexEx (hex columns only).
+  bool hex_run = false, mip_failed = false;
+  std::string hex_error;
+  std::size_t hexes = 0, hexes_inverted = 0;
+  double sj_min = 0, sj_median = 0, coverage = 0;
 };
+
+// The hex tools, if the environment names them.
+struct Hex_tools {
+  std::string integergrid, hexex;
+  double fraction = 1.0 / 15; // hex edge over the bounding-box diagonal
+  bool enabled() const { return !integergrid.empty() && !hexex.empty(); }
+};
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// The number after "key": in a JSON text, searched from `from` (NaN if absent).
+double json_number(const std::string& text, const std::string& key, std::size_t from = 0) {
+  const std::size_t k = text.find("\"" + key + "\": ", from);
+  return k == std::string::npos ? std::nan("") : std::atof(text.c_str() + k + key.size() + 4);
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// Writes the field as generate does (hexes of edge h), runs integergrid and
+// HexEx, and measures the hexes.
+void hex_pipeline(const Hex_tools& tools, const CGAL_ext::IO::Medit_mesh& mesh, const Frames& ff, double h,
+                  Quality& q) {
+  namespace fs = std::filesystem;
+  static int counter = 0;
+  const fs::path dir = fs::temp_directory_path() /
+                       ("cgal_ext_hex_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+  fs::create_directories(dir);
+  q.hex_run = true;
+  CGAL_ext::IO::Medit_mesh tets;
+  tets.vertices = mesh.vertices;
+  tets.tetrahedra = mesh.tetrahedra;
+  CGAL_ext::IO::write_medit_mesh((dir / "mesh.mesh").string(), tets);
+  std::vector<std::array<double, 9>> gradients(ff.size());
+  for (std::size_t i = 0; i < ff.size(); ++i) {
+    const Eigen::Matrix3d G = ff.parameter_gradients(i) / h; // the identity metric scaled to g = I / h^2
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) gradients[i][3 * k + c] = G(c, k);
+  }
+  CGAL_ext::IO::write_fra((dir / "frames.fra").string(), gradients);
+  CGAL_ext::IO::write_perm((dir / "frames.perm").string(),
+                           CGAL_ext::Frame_field_matchings_3<Frames>(ff).perm_file(ff));
+  auto path = [&](const char* name) { return shell_quote((dir / name).string()); };
+  const std::string ig = shell_quote(tools.integergrid) + " " + path("mesh.mesh") + " " + path("frames.fra") + " " +
+                         path("frames.perm") + " " + path("param.hexex") + " > " + path("integergrid.log") + " 2>&1";
+  if (std::system(ig.c_str()) != 0) q.hex_error = "integergrid failed";
+  q.mip_failed = slurp(dir / "integergrid.log").find("Problem with MIP solve") != std::string::npos;
+  const std::string hx = shell_quote(tools.hexex) + " " + path("param.hexex") + " " + path("hex.ovm") + " > " +
+                         path("hexex.log") + " 2>&1";
+  if (q.hex_error.empty() && std::system(hx.c_str()) != 0) q.hex_error = "hexex failed";
+  const std::string qs = std::string("python3 ") + shell_quote(CGAL_EXT_HEX_QUALITY_SCRIPT) + " " + path("hex.ovm") +
+                         " --tets " + path("mesh.mesh") + " --json > " + path("quality.json") + " 2> " +
+                         path("quality.log");
+  if (q.hex_error.empty() && std::system(qs.c_str()) != 0) q.hex_error = "no hex mesh";
+  if (q.hex_error.empty()) {
+    const std::string j = slurp(dir / "quality.json");
+    q.hexes = std::size_t(json_number(j, "hexahedra"));
+    const std::size_t sj = j.find("\"scaled_jacobian\": {");
+    q.sj_min = json_number(j, "min", sj);
+    q.sj_median = json_number(j, "median", sj);
+    q.hexes_inverted = std::size_t(json_number(j, "count_le_0", sj));
+    q.coverage = json_number(j, "coverage");
+  }
+  if (q.hex_error.empty()) fs::remove_all(dir);
+  else q.hex_error += " (files in " + dir.string() + ")";
+}
 
 // The measures of a computed field; `seconds`: the time it took (the time
 // of the matchings and singular curves is added).
-Quality measure(const Tr& tr, const Field& field, const Frames& ff, double seconds) {
+Quality measure(const Tr& tr, const Field& field, const Frames& ff, double seconds, const Hex_tools& tools,
+                const CGAL_ext::IO::Medit_mesh& mesh, double h) {
   Quality q;
   const auto t = std::chrono::steady_clock::now();
   const CGAL_ext::Frame_field_statistics& st = ff.statistics();
@@ -157,6 +253,7 @@ Quality measure(const Tr& tr, const Field& field, const Frames& ff, double secon
     q.singular_at_features += at;
     q.singular_along_features += at && on_boundary[e.vertices[0]] && on_boundary[e.vertices[1]];
   }
+  if (tools.enabled()) hex_pipeline(tools, mesh, ff, h, q);
   return q;
 }
 
@@ -167,12 +264,22 @@ void print_row(const std::string& name, const char* variant, const Quality& q, d
               q.interior_ends, q.angle_mean, q.angle_median, q.energy_per_weight, q.align_mean, q.align_max,
               q.feature_edges, q.corners, q.tangent_error_mean, q.tangent_error_max, q.singular_at_features,
               q.singular_along_features, seconds_mesh, q.seconds_field);
+  if (!q.hex_run) return;
+  if (!q.hex_error.empty())
+    std::printf("%-22s %-11s   hex pipeline: %s\n", name.c_str(), variant, q.hex_error.c_str());
+  else
+    std::printf("%-22s %-11s   hexes %zu, scaled Jacobian min %.3f median %.3f, <= 0: %zu, coverage %.4f%s\n",
+                name.c_str(), variant, q.hexes, q.sj_min, q.sj_median, q.hexes_inverted, q.coverage,
+                q.mip_failed ? " (MIP)" : "");
 }
 
 } // namespace
 
 int main(int argc, char** argv) {
   double size_fraction = 0;
+  Hex_tools tools;
+  if (const char* p = std::getenv("CGAL_EXT_INTEGERGRID")) tools.integergrid = p;
+  if (const char* p = std::getenv("CGAL_EXT_HEXEX")) tools.hexex = p;
   std::vector<std::string> inputs;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
@@ -182,8 +289,15 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "size_fraction must be in (0, 1), got '%s'\n", arg.c_str() + 14);
         return 2;
       }
+    } else if (arg.rfind("hex_fraction=", 0) == 0) {
+      tools.fraction = std::atof(arg.c_str() + 13);
+      if (!(tools.fraction > 0 && tools.fraction < 1)) {
+        std::fprintf(stderr, "hex_fraction must be in (0, 1), got '%s'\n", arg.c_str() + 13);
+        return 2;
+      }
     } else if (arg == "-h" || arg == "--help") {
-      std::printf("usage: benchmark_frame_quality [size_fraction=F] [INPUT ...]\n"
+      std::printf("usage: benchmark_frame_quality [size_fraction=F] [hex_fraction=H] [INPUT ...]\n"
+                  "hex columns: set CGAL_EXT_INTEGERGRID and CGAL_EXT_HEXEX to the tools' paths\n"
                   "INPUT: builtin:NAME, a closed surface (.off .obj .stl .ply), or a tet mesh (.mesh)\n");
       return 0;
     } else {
@@ -204,8 +318,14 @@ int main(int argc, char** argv) {
               "weight; boundary alignment error (deg); feature edges and corners (at the default angle); angle between\n"
               "a feature edge and the nearest frame axis (deg, mean and max over tetrahedra at feature edges); singular\n"
               "edges at a feature vertex (f.sing) and, of them, along the surface (f.surf); seconds for the mesh (Mesh_3\n"
-              "or reading) and for the field (frames, repair, matchings, singular curves).\n\n",
+              "or reading) and for the field (frames, repair, matchings, singular curves).\n",
               tbb::info::default_concurrency());
+  if (tools.enabled())
+    std::printf("Hex meshes: CubeCover's integergrid (%s) and HexEx (%s), hexes of %.4g times the bounding-box\n"
+                "diagonal, measured by scripts/hex_mesh_quality.py (Verdict's scaled Jacobian; coverage: hex volume over\n"
+                "tet volume).\n",
+                tools.integergrid.c_str(), tools.hexex.c_str(), tools.fraction);
+  std::printf("\n");
   std::printf("%-22s %-11s %8s %6s %5s %5s %5s %6s %5s %6s %8s %8s %8s %7s %7s %6s %6s %7s %7s %5s %5s %7s %7s\n",
               "model", "variant", "tets", "sing", "+1/4", "-1/4", "nonm", "curves", "nodes", "in-end", "ang.mean",
               "ang.med", "E/w", "al.mean", "al.max", "f.edge", "corner", "tan.mean", "tan.max", "f.sing", "f.surf",
@@ -220,21 +340,22 @@ int main(int argc, char** argv) {
       CGAL_ext::build_triangulation_from_tets(mesh.vertices, mesh.tetrahedra, mesh.tetrahedron_references, tr);
       const Field field(tr, Eigen::Matrix3d::Identity().eval());
       const double seconds_mesh = since(t);
+      const double h = diagonal(mesh.vertices) * tools.fraction;
       // Generate's default: features, then the repair of non-meshable edges.
       auto t_field = std::chrono::steady_clock::now();
       Frames ff(field);
       ff.compute();
       const double seconds_compute = since(t_field);
-      print_row(name, "no repair", measure(tr, field, ff, seconds_compute), seconds_mesh);
+      print_row(name, "no repair", measure(tr, field, ff, seconds_compute, tools, mesh, h), seconds_mesh);
       t_field = std::chrono::steady_clock::now();
       CGAL_ext::repair_singularities(ff);
-      print_row(name, "repaired", measure(tr, field, ff, seconds_compute + since(t_field)), seconds_mesh);
+      print_row(name, "repaired", measure(tr, field, ff, seconds_compute + since(t_field), tools, mesh, h), seconds_mesh);
       t_field = std::chrono::steady_clock::now();
       Frames plain(field);
       CGAL_ext::Frame_field_options options;
       options.feature_angle_deg = 180;
       plain.compute(options);
-      print_row(name, "no features", measure(tr, field, plain, since(t_field)), seconds_mesh);
+      print_row(name, "no features", measure(tr, field, plain, since(t_field), tools, mesh, h), seconds_mesh);
     } catch (const std::exception& e) {
       std::printf("%-22s error: %s\n", name.c_str(), e.what());
       ++failures;

@@ -30,7 +30,7 @@ struct Singularity_repair_options {
   /// in rings of tetrahedra sharing a vertex: one round per radius, in
   /// order, while non-meshable edges remain. A larger region gives the
   /// re-optimisation more room and other boundary values.
-  std::vector<int> radii = {2, 3, 4, 6};
+  std::vector<int> radii = {2, 3, 4};
   /// If set, called after each round with its number (from 1), the radius,
   /// the regions tried and accepted, and the non-meshable edges left.
   std::function<void(int round, int radius, std::size_t tried, std::size_t accepted, std::size_t left)> progress;
@@ -41,9 +41,9 @@ struct Singularity_repair_options {
 struct Singularity_repair_report {
   /// Non-meshable singular edges before and after.
   std::size_t non_meshable_before = 0, non_meshable_after = 0;
-  /// Rounds run, regions re-optimised, and regions kept (fewer
-  /// non-meshable edges than before).
-  std::size_t rounds = 0, regions_tried = 0, regions_accepted = 0;
+  /// Rounds run, batches of regions re-optimised together, regions
+  /// re-optimised, and regions kept (fewer non-meshable edges than before).
+  std::size_t rounds = 0, batches = 0, regions_tried = 0, regions_accepted = 0;
   /// Tetrahedra in the regions kept.
   std::size_t tets_changed = 0;
   /// Smoothness energy before and after.
@@ -67,7 +67,8 @@ struct Singularity_repair_report {
 /// tetrahedra then hold fewer non-meshable edges, and restored bit for bit
 /// otherwise. Only the edges within `singular_curve_direction_span + 1`
 /// rings of the regions can change type; they are typed from the edges
-/// within twice that (the matchings are updated, not recomputed), so a batch
+/// within `singular_curve_direction_span` more rings (the matchings are
+/// updated, not recomputed), so a batch
 /// costs time in proportion to its regions; if their count did not drop,
 /// the batch is undone. A final count over all
 /// edges checks the result: the field is never left with more non-meshable
@@ -200,6 +201,7 @@ Singularity_repair_report repair_singularities(Frame_field& ff, const Singularit
     using Start = typename Frame_field::Reoptimize_start;
     for (const std::vector<std::size_t>& batch : batches) {
       tried += batch.size();
+      ++report.batches;
       std::vector<std::size_t> pending = batch; // regions not yet improved
       // Two starts: the relaxed one (as the whole field was made), then, for
       // the regions it did not improve, the propagated one.
@@ -214,12 +216,13 @@ Singularity_repair_report repair_singularities(Frame_field& ff, const Singularit
         // The edges whose type a change of the regions can change: those of
         // the tetrahedra within `reach` rings of the regions' vertices (a
         // curve's direction is taken `singular_curve_direction_span` edges
-        // away). They are typed from the edges within twice that, so that
-        // their curves' directions are those a count of all edges finds.
+        // away). They are typed from the edges within
+        // `singular_curve_direction_span` more rings, so that their curves'
+        // directions are those a count of all edges finds.
         std::sort(seeds.begin(), seeds.end());
         seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
         const std::vector<std::size_t> inner = region_of(seeds, reach);
-        const std::vector<std::size_t> examined = region_of(seeds, 2 * reach);
+        const std::vector<std::size_t> examined = region_of(seeds, reach + singular_curve_direction_span);
         for (std::size_t i : inner) in_inner[i] = 1;
         auto inner_edge = [&](const std::array<std::size_t, 2>& e) {
           for (std::size_t s = first[e[0]]; s < first[e[0] + 1]; ++s)
