@@ -465,7 +465,7 @@ public:
     std::vector<std::size_t> local(size(), std::size_t(-1));
     for (std::size_t k = 0; k < m; ++k) set.marked[tets[k]] = 1, local[tets[k]] = k;
     const Sh_vector s0 = octahedral_reference_sh();
-    if (start == Reoptimize_start::propagated && propagate(tets, set.marked)) {
+    if (start == Reoptimize_start::propagated && propagate(tets, local)) {
       internal::parallel_for_each_index(m, [&](std::size_t k) {
         const std::size_t i = tets[k];
         if (opt_.hard_boundary && constraint_of_[i] >= 0) q_[i] = snap(q_[i], constraints_[constraint_of_[i]]);
@@ -1143,11 +1143,11 @@ private:
   // neighbours, each frame transported from the tetrahedron that reached it
   // (its first facet towards one). False, with nothing changed, if no fixed
   // neighbour reaches some of the tetrahedra.
-  bool propagate(const std::vector<std::size_t>& tets, const std::vector<char>& marked) {
+  // `local` gives the position of a tetrahedron in `tets`, or size_t(-1).
+  bool propagate(const std::vector<std::size_t>& tets, const std::vector<std::size_t>& local) {
+    const std::size_t none = std::size_t(-1);
     std::vector<std::size_t> queue;
     std::vector<char> done(tets.size(), 0);
-    std::vector<std::int64_t> local(size(), -1);
-    for (std::size_t k = 0; k < tets.size(); ++k) local[tets[k]] = std::int64_t(k);
     std::vector<Eigen::Quaterniond> q(tets.size());
     auto reach = [&](std::size_t k, std::size_t i, int f, const Eigen::Quaterniond& from) {
       q[k] = links_[i].identity[f] ? from : (links_[i].T_in[f] * from).normalized();
@@ -1157,7 +1157,7 @@ private:
     for (std::size_t k = 0; k < tets.size(); ++k)
       for (int f = 0; f < 4; ++f) {
         const std::int64_t j = links_[tets[k]].nb[f];
-        if (j >= 0 && !marked[j]) {
+        if (j >= 0 && local[j] == none) {
           reach(k, tets[k], f, q_[j]);
           break;
         }
@@ -1166,9 +1166,9 @@ private:
       const std::size_t i = tets[queue[head]];
       for (int f = 0; f < 4; ++f) {
         const std::int64_t j = links_[i].nb[f];
-        if (j < 0 || local[j] < 0 || done[local[j]]) continue;
+        if (j < 0 || local[j] == none || done[local[j]]) continue;
         const int fj = cells_[j]->index(cells_[i]);
-        reach(std::size_t(local[j]), std::size_t(j), fj, q[queue[head]]);
+        reach(local[j], std::size_t(j), fj, q[queue[head]]);
       }
     }
     if (queue.size() < tets.size()) return false;

@@ -115,6 +115,8 @@ public:
   }
 
   const Edges& non_meshable() const { return bad_; }
+  // The matchings of the current frames (updated after every change).
+  const Frame_field_matchings_3<Frame_field>& matchings() const { return matchings_; }
 
   // One round: regions of `radius` rings around the clusters, in batches of
   // regions that share no vertex. Returns the regions tried and kept.
@@ -235,7 +237,9 @@ private:
       }
       return c;
     };
-    const Edges old_here = examine();
+    Edges old_here; // typed as the examination types them (see above)
+    for (const auto& e : bad_)
+      if (is_inner(e)) old_here.push_back(e);
     const std::vector<std::size_t> before = count(old_here);
     std::vector<Eigen::Quaterniond> saved(tets.size());
     for (std::size_t k = 0; k < tets.size(); ++k) saved[k] = ff_.rotation_quaternion(tets[k]);
@@ -337,7 +341,7 @@ Singularity_repair_report repair_singularities(Frame_field& ff, const Singularit
     if (options.progress) options.progress(int(report.rounds), radius, tried, kept, repairer.non_meshable().size());
   }
   // The final count from all edges: the field is never left worse.
-  report.non_meshable_after = internal::non_meshable_edges(singular_edges(ff)).size();
+  report.non_meshable_after = internal::non_meshable_edges(singular_edges(ff, repairer.matchings())).size();
   if (report.non_meshable_after > report.non_meshable_before) {
     for (std::size_t i = 0; i < ff.size(); ++i) ff.set_rotation(i, original[i]);
     report.non_meshable_after = report.non_meshable_before;

@@ -581,6 +581,7 @@ int command_generate(const std::vector<std::string>& args) {
      << "  \"repair\": " << (repair ? "{\"non_meshable_before\": " + std::to_string(fix.non_meshable_before) +
                                    ", \"non_meshable_after\": " + std::to_string(fix.non_meshable_after) +
                                    ", \"rounds\": " + std::to_string(fix.rounds) +
+                                   ", \"batches\": " + std::to_string(fix.batches) +
                                    ", \"regions_tried\": " + std::to_string(fix.regions_tried) +
                                    ", \"regions_kept\": " + std::to_string(fix.regions_accepted) +
                                    ", \"tets_changed\": " + std::to_string(fix.tets_changed) +
