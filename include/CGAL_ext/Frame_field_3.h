@@ -464,49 +464,8 @@ public:
     set.marked.assign(size(), 0);
     std::vector<std::size_t> local(size(), std::size_t(-1));
     for (std::size_t k = 0; k < m; ++k) set.marked[tets[k]] = 1, local[tets[k]] = k;
-    const Sh_vector s0 = octahedral_reference_sh();
-    if (start == Reoptimize_start::propagated && propagate(tets, local)) {
-      internal::parallel_for_each_index(m, [&](std::size_t k) {
-        const std::size_t i = tets[k];
-        if (opt_.hard_boundary && constraint_of_[i] >= 0) q_[i] = snap(q_[i], constraints_[constraint_of_[i]]);
-        s_[i] = rotate_sh(q_[i], s0);
-      });
-      int evaluations = 0;
-      bool limit = false;
-      return lbfgs(set, evaluations, limit, nullptr);
-    }
-    // The linear initialisation on the list: H x = b with the frames
-    // outside on the right-hand side.
-    std::vector<Sh_vector> x(m, Sh_vector::Zero()), b(m, Sh_vector::Zero());
-    internal::parallel_for_each_index(m, [&](std::size_t k) {
-      const std::size_t i = tets[k];
-      if (constraint_of_[i] >= 0) b[k] = constraints_[constraint_of_[i]].b;
-      for (int f = 0; f < 4; ++f)
-        if (links_[i].nb[f] >= 0 && !set.marked[links_[i].nb[f]]) b[k] += links_[i].w[f] * neighbour_sh(i, f, s_);
-    });
-    auto apply = [&](const std::vector<Sh_vector>& v, std::vector<Sh_vector>& y) {
-      internal::parallel_for_each_index(m, [&](std::size_t k) {
-        const std::size_t i = tets[k];
-        const Links& L = links_[i];
-        Sh_vector r = diagonal_[i] * v[k];
-        for (int f = 0; f < 4; ++f) {
-          if (L.nb[f] < 0 || !set.marked[L.nb[f]]) continue;
-          const Sh_vector& vj = v[local[L.nb[f]]];
-          r -= L.w[f] * (L.identity[f] ? vj : Sh_vector(rotate_sh(L.T_in[f], vj)));
-        }
-        if (constraint_of_[i] >= 0) r += constraints_[constraint_of_[i]].B * v[k];
-        y[k] = r;
-      });
-    };
-    double residual = 0;
-    pcg(x, b, apply, [&](std::size_t k, const Sh_vector& r) { return precondition(tets[k], r); }, 1e-8, nullptr,
-        residual);
-    internal::parallel_for_each_index(m, [&](std::size_t k) {
-      const std::size_t i = tets[k];
-      if (x[k].norm() > 1e-9) q_[i] = Eigen::Quaterniond(rotation_from_octahedral_sh(x[k]).rotation);
-      if (opt_.hard_boundary && constraint_of_[i] >= 0) q_[i] = snap(q_[i], constraints_[constraint_of_[i]]);
-      s_[i] = rotate_sh(q_[i], s0);
-    });
+    if (start != Reoptimize_start::propagated || !propagate(tets, local)) relax(tets, set, local);
+    internal::parallel_for_each_index(m, [&](std::size_t k) { constrain(tets[k]); });
     int evaluations = 0;
     bool limit = false;
     return lbfgs(set, evaluations, limit, nullptr);
@@ -1115,6 +1074,13 @@ private:
     return out.normalized();
   }
 
+  // Snaps the rotation of tetrahedron i to its hard constraint (if any) and
+  // sets its SH vector: the last step of every start.
+  void constrain(std::size_t i) {
+    if (opt_.hard_boundary && constraint_of_[i] >= 0) q_[i] = snap(q_[i], constraints_[constraint_of_[i]]);
+    s_[i] = rotate_sh(q_[i], octahedral_reference_sh());
+  }
+
   void project() {
     const std::size_t n = size();
     q_.assign(n, Eigen::Quaterniond::Identity());
@@ -1125,8 +1091,7 @@ private:
       } else {
         q_[i] = Eigen::Quaterniond(rotation_from_octahedral_sh(s_[i]).rotation);
       }
-      if (opt_.hard_boundary && constraint_of_[i] >= 0) q_[i] = snap(q_[i], constraints_[constraint_of_[i]]);
-      s_[i] = rotate_sh(q_[i], octahedral_reference_sh());
+      constrain(i);
     });
     stats_.degenerate_projections = std::count(degenerate.begin(), degenerate.end(), 1);
   }
@@ -1185,6 +1150,40 @@ private:
     std::size_t tet(std::size_t k) const { return list ? (*list)[k] : k; }
     bool active(std::int64_t j) const { return !list || marked[std::size_t(j)]; }
   };
+
+  // The `relaxed` start of reoptimize(): the linear initialisation on the
+  // list (H x = b with the frames outside on the right-hand side), projected
+  // onto rotations. `local` as in propagate().
+  void relax(const std::vector<std::size_t>& tets, const Active_set& set, const std::vector<std::size_t>& local) {
+    const std::size_t m = tets.size();
+    std::vector<Sh_vector> x(m, Sh_vector::Zero()), b(m, Sh_vector::Zero());
+    internal::parallel_for_each_index(m, [&](std::size_t k) {
+      const std::size_t i = tets[k];
+      if (constraint_of_[i] >= 0) b[k] = constraints_[constraint_of_[i]].b;
+      for (int f = 0; f < 4; ++f)
+        if (links_[i].nb[f] >= 0 && !set.marked[links_[i].nb[f]]) b[k] += links_[i].w[f] * neighbour_sh(i, f, s_);
+    });
+    auto apply = [&](const std::vector<Sh_vector>& v, std::vector<Sh_vector>& y) {
+      internal::parallel_for_each_index(m, [&](std::size_t k) {
+        const std::size_t i = tets[k];
+        const Links& L = links_[i];
+        Sh_vector r = diagonal_[i] * v[k];
+        for (int f = 0; f < 4; ++f) {
+          if (L.nb[f] < 0 || !set.marked[L.nb[f]]) continue;
+          const Sh_vector& vj = v[local[L.nb[f]]];
+          r -= L.w[f] * (L.identity[f] ? vj : Sh_vector(rotate_sh(L.T_in[f], vj)));
+        }
+        if (constraint_of_[i] >= 0) r += constraints_[constraint_of_[i]].B * v[k];
+        y[k] = r;
+      });
+    };
+    double residual = 0;
+    pcg(x, b, apply, [&](std::size_t k, const Sh_vector& r) { return precondition(tets[k], r); }, 1e-8, nullptr,
+        residual);
+    internal::parallel_for_each_index(m, [&](std::size_t k) {
+      if (x[k].norm() > 1e-9) q_[tets[k]] = Eigen::Quaterniond(rotation_from_octahedral_sh(x[k]).rotation);
+    });
+  }
 
   // The refinement energy (smoothness + soft boundary terms) of the active
   // tetrahedra and its gradient in their left-trivialised rotation

@@ -208,25 +208,6 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_fie
   using Edge = typename Frame_field::Triangulation::Edge;
   const auto& field = ff.metric_field();
   const auto& tr = field.triangulation();
-  // The edges to examine: all finite edges, or those of the tetrahedra given (once each).
-  std::vector<Edge> all;
-  if (tets) {
-    std::vector<std::pair<std::array<std::size_t, 2>, Edge>> keyed;
-    for (std::size_t i : *tets) {
-      const Cell_handle c = ff.cell(i);
-      for (int a = 0; a < 4; ++a)
-        for (int b = a + 1; b < 4; ++b) {
-          std::size_t u = ff.vertex_index(c->vertex(a)), v = ff.vertex_index(c->vertex(b));
-          keyed.push_back({{std::min(u, v), std::max(u, v)}, Edge(c, a, b)});
-        }
-    }
-    std::sort(keyed.begin(), keyed.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-    for (std::size_t k = 0; k < keyed.size(); ++k)
-      if (k == 0 || keyed[k].first != keyed[k - 1].first) all.push_back(keyed[k].second);
-  } else {
-    all.reserve(tr.number_of_finite_edges());
-    for (auto e = tr.finite_edges_begin(); e != tr.finite_edges_end(); ++e) all.push_back(*e);
-  }
   // Pass 1: the holonomy of every interior edge, and what the typing needs.
   struct Found {
     Singular_edge edge;
@@ -236,11 +217,10 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_fie
   };
   std::vector<Found> found;
   std::vector<Cell_handle> loop;
-  for (const Edge& edge : all) {
-    const Edge* e = &edge;
+  auto examine = [&](const Edge& e) {
     loop.clear();
     bool interior = true;
-    auto circ = tr.incident_cells(*e), done = circ;
+    auto circ = tr.incident_cells(e), done = circ;
     do {
       const Cell_handle c = circ;
       if (tr.is_infinite(c) || ff.index(c) < 0) {
@@ -249,7 +229,7 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_fie
       }
       loop.push_back(c);
     } while (++circ != done);
-    if (!interior) continue;
+    if (!interior) return;
     const int n = int(loop.size());
     // The product of the matchings around the loop, from loop[0].
     auto loop_product = [&] {
@@ -260,7 +240,7 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_fie
       }
       return product;
     };
-    if (octahedral_group_index(loop_product(), 0) == 0) continue; // regular from any start
+    if (octahedral_group_index(loop_product(), 0) == 0) return; // regular from any start
 
     // A canonical loop, from the tetrahedron of smallest index, turning
     // positively about u -> v (u the smaller vertex index): CGAL's edge
@@ -273,7 +253,7 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_fie
                 std::min_element(loop.begin(), loop.end(),
                                  [&](Cell_handle a, Cell_handle b) { return ff.index(a) < ff.index(b); }),
                 loop.end());
-    auto u = e->first->vertex(e->second), v = e->first->vertex(e->third);
+    auto u = e.first->vertex(e.second), v = e.first->vertex(e.third);
     if (ff.vertex_index(u) > ff.vertex_index(v)) std::swap(u, v);
     const Eigen::Vector3d pu = internal::to_eigen_vector(u->point()), pv = internal::to_eigen_vector(v->point());
     double turn = 0; // orientation of the circulation about u -> v
@@ -300,6 +280,23 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_fie
     s.valence = 0;
     s.midpoint = mid;
     found.push_back(f);
+  };
+  // The edges to examine: all finite edges, or those of the tetrahedra given (once each).
+  if (tets) {
+    std::vector<std::pair<std::array<std::size_t, 2>, Edge>> keyed;
+    for (std::size_t i : *tets) {
+      const Cell_handle c = ff.cell(i);
+      for (int a = 0; a < 4; ++a)
+        for (int b = a + 1; b < 4; ++b) {
+          std::size_t u = ff.vertex_index(c->vertex(a)), v = ff.vertex_index(c->vertex(b));
+          keyed.push_back({{std::min(u, v), std::max(u, v)}, Edge(c, a, b)});
+        }
+    }
+    std::sort(keyed.begin(), keyed.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (std::size_t k = 0; k < keyed.size(); ++k)
+      if (k == 0 || keyed[k].first != keyed[k - 1].first) examine(keyed[k].second);
+  } else {
+    for (auto e = tr.finite_edges_begin(); e != tr.finite_edges_end(); ++e) examine(*e);
   }
   std::sort(found.begin(), found.end(),
             [](const Found& a, const Found& b) { return a.edge.vertices < b.edge.vertices; });
