@@ -15,6 +15,9 @@
 #include <CGAL_ext/Octahedral_frame.h>
 #include <CGAL_ext/Sharp_features_3.h>
 #include <CGAL_ext/Tet_mesh_triangulation_3.h>
+#include <CGAL_ext/internal/deterministic_parallel.h>
+#include <CGAL_ext/internal/lbfgs_on_rotations.h>
+#include <CGAL_ext/internal/preconditioned_conjugate_gradient.h>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -143,32 +146,6 @@ struct Frame_field_statistics {
   double seconds_setup = 0, seconds_transports = 0, seconds_linear = 0, seconds_projection = 0,
          seconds_refinement = 0;
 };
-
-namespace internal {
-
-// Sum of f(begin, end) over fixed blocks, added in block order: the same bits
-// whatever the number of threads.
-template <class F>
-double deterministic_sum(std::size_t n, F&& f) {
-  constexpr std::size_t block = 2048;
-  const std::size_t nb = (n + block - 1) / block;
-  std::vector<double> part(nb, 0.0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nb), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t b = r.begin(); b != r.end(); ++b) part[b] = f(b * block, std::min(n, (b + 1) * block));
-  });
-  double s = 0;
-  for (double p : part) s += p;
-  return s;
-}
-
-template <class F>
-void parallel_for_each_index(std::size_t n, F&& f) {
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
-  });
-}
-
-} // namespace internal
 
 /// \ingroup PkgCGALExtFrames
 /// An octahedral frame field in a metric: one rotation `R_i` per
@@ -873,47 +850,19 @@ private:
     if (constraint_of_[i] >= 0) return constraints_[constraint_of_[i]].preconditioner * r;
     return diagonal_[i] > 0 ? Sh_vector(r / diagonal_[i]) : r;
   }
-  static double dot(const std::vector<Sh_vector>& a, const std::vector<Sh_vector>& b) {
-    return internal::deterministic_sum(a.size(), [&](std::size_t first, std::size_t last) {
-      double s = 0;
-      for (std::size_t i = first; i < last; ++i) s += a[i].dot(b[i]);
-      return s;
-    });
-  }
-
   // Preconditioned conjugate gradients on H x = b from the given x, until
-  // |r| <= tol |b|. Returns the iterations; `relres` gets |r| / |b|.
+  // |r| <= tol |b| (or max_linear_iterations). Returns the iterations;
+  // `relres` gets |r| / |b|. `stage` names the iterations for the progress
+  // callback (or null).
   template <class Apply, class Precondition>
   int pcg(std::vector<Sh_vector>& x, const std::vector<Sh_vector>& b, Apply apply, Precondition precondition,
           double tol, const char* stage, double& relres) const {
-    const std::size_t n = x.size();
-    std::vector<Sh_vector> r(n), z(n), p(n), Ap(n);
-    apply(x, Ap);
-    internal::parallel_for_each_index(n, [&](std::size_t i) {
-      r[i] = b[i] - Ap[i];
-      z[i] = precondition(i, r[i]);
-      p[i] = z[i];
-    });
-    const double bnorm = std::sqrt(dot(b, b));
-    double rnorm = std::sqrt(dot(r, r)), rz = dot(r, z);
-    int it = 0;
-    for (; it < opt_.max_linear_iterations && rnorm > tol * bnorm; ++it) {
-      apply(p, Ap);
-      const double alpha = rz / dot(p, Ap);
-      internal::parallel_for_each_index(n, [&](std::size_t i) {
-        x[i] += alpha * p[i];
-        r[i] -= alpha * Ap[i];
-        z[i] = precondition(i, r[i]);
-      });
-      const double rz_new = dot(r, z);
-      const double beta = rz_new / rz;
-      rz = rz_new;
-      internal::parallel_for_each_index(n, [&](std::size_t i) { p[i] = z[i] + beta * p[i]; });
-      rnorm = std::sqrt(dot(r, r));
-      if (stage && opt_.iteration_progress) opt_.iteration_progress(stage, it + 1, rnorm / bnorm);
-    }
-    relres = bnorm > 0 ? rnorm / bnorm : 0;
-    return it;
+    return internal::preconditioned_conjugate_gradient(
+        x, b, apply, precondition, tol, opt_.max_linear_iterations,
+        [&](int it, double r) {
+          if (stage && opt_.iteration_progress) opt_.iteration_progress(stage, it, r);
+        },
+        relres);
   }
 
   // The coarse level of the initialisation: aggregates of neighbouring
@@ -1012,7 +961,7 @@ private:
     stats_.linear_iteration_limit_reached = false;
     stats_.linear_residual = 0;
     stats_.coarse_unknowns = 0;
-    if (dot(b, b) > 0) {
+    if (internal::block_dot(b, b) > 0) {
       if (opt_.aggregate_size > 1 && n >= std::size_t(8 * opt_.aggregate_size)) {
         // Nested iteration: the coarse solution, prolonged, starts the fine
         // iteration with the smooth part of the solution already in place.
@@ -1236,25 +1185,10 @@ private:
   // it. `stage` names the iterations for the progress callback (or null).
   int lbfgs(const Active_set& set, int& evaluations, bool& limit, const char* stage) {
     const std::size_t n = set.n;
-    int iterations = 0;
     evaluations = 0;
     limit = false;
     if (opt_.max_refinement_iterations <= 0 || n == 0) return 0;
     const Sh_vector s0 = octahedral_reference_sh();
-    std::vector<Eigen::Vector3d> g(n), g_new(n), p(n);
-    double E = energy_and_gradient(set, &g);
-    ++evaluations;
-    const double floor_energy = 1e-14 * std::max(total_weight_, 1e-300);
-    const int m = std::max(1, opt_.lbfgs_memory);
-    // History in a ring of m preallocated slots, oldest first in `order`;
-    // per pair: rho = 1 / (s.y) and gamma = (s.y) / (y.Dinv.y).
-    std::vector<std::vector<Eigen::Vector3d>> S, Y;
-    std::vector<int> order;
-    std::vector<double> rho(m), gamma_of(m);
-    // The accepted rotations; trial steps are written into q_ and s_.
-    std::vector<Eigen::Quaterniond> q_old(n);
-    for (std::size_t k = 0; k < n; ++k) q_old[k] = q_[set.tet(k)];
-    int small_steps = 0;
     // d^2 E / dw_i^2 ~ 2 (sum of the weights of i) J^T J, and J^T J = (20/3) I.
     std::vector<double> inverse_diagonal(n);
     for (std::size_t k = 0; k < n; ++k) {
@@ -1262,142 +1196,36 @@ private:
       for (int f = 0; f < 4; ++f) sum += links_[set.tet(k)].w[f];
       inverse_diagonal[k] = sum > 0 ? 3 / (40 * sum) : 1;
     }
-    // One pass over the active tetrahedra: update(k), then the sum of
-    // value(k) on the updated data (fixed blocks: deterministic).
-    auto pass = [&](auto&& update, auto&& value) {
-      return internal::deterministic_sum(n, [&](std::size_t first, std::size_t last) {
-        double sum = 0;
-        for (std::size_t k = first; k < last; ++k) {
-          update(k);
-          sum += value(k);
-        }
-        return sum;
-      });
-    };
-    auto set_frames = [&](double step) {
-      internal::parallel_for_each_index(n, [&](std::size_t k) {
-        const std::size_t i = set.tet(k);
-        q_[i] = step == 0 ? q_old[k] : (internal::oct_quaternion_exp(step * p[k]) * q_old[k]).normalized();
-        s_[i] = rotate_sh(q_[i], s0);
-      });
-    };
-    for (int it = 0; it < opt_.max_refinement_iterations; ++it) {
-      if (E <= floor_energy) break;
-      // Two-loop recursion, p = -H g, each axpy fused with the next dot product.
-      const int h = int(order.size());
-      std::vector<double> alpha(h);
-      double d = pass([&](std::size_t i) { p[i] = -g[i]; },
-                      [&](std::size_t i) { return h > 0 ? S[order[h - 1]][i].dot(p[i]) : 0.0; });
-      for (int k = h - 1; k >= 0; --k) {
-        const int o = order[k];
-        alpha[k] = rho[o] * d;
-        const double a = alpha[k];
-        d = pass([&](std::size_t i) { p[i] -= a * Y[o][i]; },
-                 [&](std::size_t i) { return k > 0 ? S[order[k - 1]][i].dot(p[i]) : 0.0; });
-      }
-      // Initial inverse Hessian: gamma diag(1 / h_i), with h_i the
-      // Gauss-Newton diagonal of tetrahedron i (its weights vary with the
-      // cell size and the boundary terms, by orders of magnitude).
-      const double gamma = h > 0 ? gamma_of[order[h - 1]] : 1.0;
-      double slope = 0;
-      d = pass([&](std::size_t i) { p[i] *= gamma * inverse_diagonal[i]; },
-               [&](std::size_t i) { return h > 0 ? Y[order[0]][i].dot(p[i]) : g[i].dot(p[i]); });
-      if (h == 0) slope = d;
-      for (int k = 0; k < h; ++k) {
-        const int o = order[k];
-        const double a = alpha[k] - rho[o] * d;
-        d = pass([&](std::size_t i) { p[i] += a * S[o][i]; },
-                 [&](std::size_t i) { return k + 1 < h ? Y[order[k + 1]][i].dot(p[i]) : g[i].dot(p[i]); });
-        if (k + 1 == h) slope = d;
-      }
-      if (!(slope < 0)) { // not a descent direction: restart from the gradient
-        order.clear();
-        slope = pass([&](std::size_t i) { p[i] = -inverse_diagonal[i] * g[i]; },
-                     [&](std::size_t i) { return g[i].dot(p[i]); });
-        if (!(slope < 0)) break; // zero gradient
-      }
-      // First step (no curvature information): at most 0.1 rad per frame.
-      double step = 1;
-      if (order.empty()) {
-        double pmax = 0;
-        for (std::size_t i = 0; i < n; ++i) pmax = std::max(pmax, p[i].norm());
-        step = std::min(1.0, 0.1 / pmax);
-      }
-      double E_new = E;
-      bool accepted = false;
-      for (int ls = 0; ls < 40; ++ls) {
-        set_frames(step);
-        E_new = energy_and_gradient(set, &g_new);
-        ++evaluations;
-        if (E_new <= E + 1e-4 * step * slope) {
-          accepted = true;
-          break;
-        }
-        step *= 0.5;
-      }
-      if (!accepted) {
-        set_frames(0);
-        break;
-      }
-      ++iterations;
-      // The new pair goes into a free slot (or the oldest one's), kept only
-      // if the curvature s.y is positive.
-      int slot;
-      if (int(S.size()) < m) {
-        slot = int(S.size());
-        S.emplace_back(n), Y.emplace_back(n);
-      } else if (int(order.size()) < m) {
-        slot = 0;
-        while (std::find(order.begin(), order.end(), slot) != order.end()) ++slot;
-      } else {
-        slot = order.front();
-      }
-      std::vector<Eigen::Vector3d>& sk = S[slot];
-      std::vector<Eigen::Vector3d>& yk = Y[slot];
-      double sums[4] = {0, 0, 0, 0}; // s.y, s.s, y.y, y.Dinv.y
-      {
-        constexpr std::size_t block = 2048;
-        const std::size_t nb = (n + block - 1) / block;
-        std::vector<std::array<double, 4>> part(nb);
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nb), [&](const tbb::blocked_range<std::size_t>& r) {
-          for (std::size_t bl = r.begin(); bl != r.end(); ++bl) {
-            std::array<double, 4> acc{0, 0, 0, 0};
-            for (std::size_t i = bl * block; i < std::min(n, (bl + 1) * block); ++i) {
-              sk[i] = step * p[i];
-              yk[i] = g_new[i] - g[i];
-              acc[0] += sk[i].dot(yk[i]), acc[1] += sk[i].squaredNorm(), acc[2] += yk[i].squaredNorm();
-              acc[3] += inverse_diagonal[i] * yk[i].squaredNorm();
-            }
-            part[bl] = acc;
-          }
-        });
-        for (const auto& q : part)
-          for (int k = 0; k < 4; ++k) sums[k] += q[k];
-      }
-      if (int(order.size()) == m && order.front() == slot) order.erase(order.begin());
-      if (sums[0] > 1e-12 * std::sqrt(sums[1] * sums[2])) {
-        rho[slot] = 1 / sums[0];
-        gamma_of[slot] = sums[0] / sums[3];
-        order.push_back(slot);
-      }
-      internal::parallel_for_each_index(n, [&](std::size_t k) { q_old[k] = q_[set.tet(k)]; });
-      std::swap(g, g_new);
-      const double decrease = E - E_new;
-      E = E_new;
-      if (stage && opt_.iteration_progress) opt_.iteration_progress(stage, it + 1, std::ldexp(E, weight_exponent_));
-      small_steps = decrease <= opt_.energy_tolerance * E ? small_steps + 1 : 0;
-      if (small_steps >= 3) break;
-      if (it + 1 == opt_.max_refinement_iterations) limit = true;
-    }
+    // The accepted rotations; trial steps are written into q_ and s_.
+    std::vector<Eigen::Quaterniond> q_old(n);
+    for (std::size_t k = 0; k < n; ++k) q_old[k] = q_[set.tet(k)];
+    internal::Lbfgs_settings settings;
+    settings.max_iterations = opt_.max_refinement_iterations;
+    settings.memory = opt_.lbfgs_memory;
+    settings.energy_tolerance = opt_.energy_tolerance;
+    settings.floor_energy = 1e-14 * std::max(total_weight_, 1e-300);
+    const internal::Lbfgs_outcome out = internal::lbfgs_on_rotations(
+        inverse_diagonal, [&](std::vector<Eigen::Vector3d>& g) { return energy_and_gradient(set, &g); },
+        [&](const std::vector<Eigen::Vector3d>& p, double step) {
+          internal::parallel_for_each_index(n, [&](std::size_t k) {
+            const std::size_t i = set.tet(k);
+            q_[i] = step == 0 ? q_old[k] : (internal::oct_quaternion_exp(step * p[k]) * q_old[k]).normalized();
+            s_[i] = rotate_sh(q_[i], s0);
+          });
+        },
+        [&] { internal::parallel_for_each_index(n, [&](std::size_t k) { q_old[k] = q_[set.tet(k)]; }); },
+        [&](int it, double E) {
+          if (stage && opt_.iteration_progress) opt_.iteration_progress(stage, it, std::ldexp(E, weight_exponent_));
+        },
+        settings);
+    evaluations = out.evaluations;
+    limit = out.limit;
     if (opt_.hard_boundary) // undo the rounding drift of the constrained axes
       internal::parallel_for_each_index(n, [&](std::size_t k) {
         const std::size_t i = set.tet(k);
-        if (constraint_of_[i] >= 0) {
-          q_[i] = snap(q_[i], constraints_[constraint_of_[i]]);
-          s_[i] = rotate_sh(q_[i], s0);
-        }
+        if (constraint_of_[i] >= 0) constrain(i);
       });
-    return iterations;
+    return out.iterations;
   }
 
   void measure() {

@@ -1,0 +1,72 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_EXT_INTERNAL_DETERMINISTIC_PARALLEL_H
+#define CGAL_EXT_INTERNAL_DETERMINISTIC_PARALLEL_H
+
+/// \file
+/// Parallel loops whose results do not depend on the number of threads:
+/// loops that write per-index data only, and sums over fixed blocks added in
+/// block order (floating-point addition is not associative, so a sum split
+/// by the scheduler would change its last bits from run to run).
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace CGAL_ext {
+namespace internal {
+
+/// The block size of the deterministic sums.
+constexpr std::size_t deterministic_block = 2048;
+
+/// The sums of `K` values over `0..n-1`: `f(first, last)` returns the `K`
+/// partial sums of a block, and the blocks are added in order.
+/// \tparam K the number of sums
+/// \tparam F a callable `std::array<double, K>(std::size_t first, std::size_t last)`
+/// \param n the number of indices
+/// \param f the block sums
+template <std::size_t K, class F>
+std::array<double, K> deterministic_sums(std::size_t n, F&& f) {
+  const std::size_t nb = (n + deterministic_block - 1) / deterministic_block;
+  std::vector<std::array<double, K>> part(nb);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nb), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t b = r.begin(); b != r.end(); ++b)
+      part[b] = f(b * deterministic_block, std::min(n, (b + 1) * deterministic_block));
+  });
+  std::array<double, K> s{};
+  for (const auto& p : part)
+    for (std::size_t k = 0; k < K; ++k) s[k] += p[k];
+  return s;
+}
+
+/// The sum of `f(first, last)` over fixed blocks of `0..n-1`, added in block
+/// order: the same bits whatever the number of threads.
+/// \tparam F a callable `double(std::size_t first, std::size_t last)`
+/// \param n the number of indices
+/// \param f the block sum
+template <class F>
+double deterministic_sum(std::size_t n, F&& f) {
+  return deterministic_sums<1>(n, [&](std::size_t first, std::size_t last) {
+    return std::array<double, 1>{f(first, last)};
+  })[0];
+}
+
+/// Calls `f(i)` for `i` in `0..n-1` in parallel (`f` must write per-index data only).
+/// \tparam F a callable `void(std::size_t)`
+/// \param n the number of indices
+/// \param f the body
+template <class F>
+void parallel_for_each_index(std::size_t n, F&& f) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
+  });
+}
+
+} // namespace internal
+} // namespace CGAL_ext
+
+#endif // CGAL_EXT_INTERNAL_DETERMINISTIC_PARALLEL_H
