@@ -93,6 +93,16 @@ private:
   std::string problem_;
 };
 
+/// \ingroup PkgCGALExtIO
+/// A number as messages and progress lines write it: `%.*g`, short.
+/// \param x the number
+/// \param significant_digits the significant digits (4 for figures, 6 for parameters)
+inline std::string format_number(double x, int significant_digits = 4) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.*g", significant_digits, x);
+  return buf;
+}
+
 } // namespace CGAL_ext
 
 #endif // CGAL_EXT_INPUT_ERROR_H

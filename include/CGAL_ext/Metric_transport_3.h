@@ -320,11 +320,6 @@ private:
     return std::atan2(n1.cross(n2).norm(), n1.dot(n2));
   }
 
-  static std::string format(double t) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.6g", t);
-    return buf;
-  }
 
   static Metric_transport_result failure(Metric_transport_result& res, std::string why, double exit_t) {
     res = Metric_transport_result();
@@ -342,13 +337,13 @@ private:
       if (walk_.locate(a, hint).dimension < 0) return failure(res, "the start point is outside the domain", 0.0);
       return failure(res, "the segment leaves the domain at its start point (t = 0)", 0.0);
     }
-    const std::string leaves = "the segment leaves the domain at t = " + format(gap.t_in);
+    const std::string leaves = "the segment leaves the domain at t = " + format_number(gap.t_in, 6);
     if (gap.t_out == 1) {
       if (walk_.locate(b).dimension < 0)
         return failure(res, "the end point is outside the domain (" + leaves + ")", gap.t_in);
       return failure(res, leaves + " and comes back only at its end point", gap.t_in);
     }
-    return failure(res, leaves + " and re-enters it at t = " + format(gap.t_out), gap.t_in);
+    return failure(res, leaves + " and re-enters it at t = " + format_number(gap.t_out, 6), gap.t_in);
   }
 
   const Metric_field* field_;

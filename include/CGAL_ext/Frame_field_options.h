@@ -1,0 +1,123 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_EXT_FRAME_FIELD_OPTIONS_H
+#define CGAL_EXT_FRAME_FIELD_OPTIONS_H
+
+/// \file Frame_field_options.h
+/// The options of `Frame_field_3::compute()` and the statistics it returns.
+
+#include <CGAL_ext/Cell_transport_3.h>
+
+#include <cstddef>
+#include <functional>
+#include <string>
+
+namespace CGAL_ext {
+
+/// \ingroup PkgCGALExtFrames
+/// Options of `Frame_field_3::compute()`.
+struct Frame_field_options {
+  /// Weight `lambda` of the soft boundary-alignment term relative to the
+  /// smoothness term (see `Frame_field_3`). Used by the linear
+  /// initialisation, and in the refinement for the boundary faces that are
+  /// not hard constraints.
+  double boundary_weight = 100;
+  /// Whether boundary tetrahedra are constrained exactly after the
+  /// projection (their frame keeps an axis on `A^{-1} n`; see `Frame_field_3`).
+  bool hard_boundary = true;
+  /// The feature angle in degrees (`Sharp_features_3`): boundary edges whose
+  /// facets' normals differ by more than this, in the metric, are feature
+  /// edges. With `hard_boundary`, the tetrahedra at a feature edge keep an
+  /// axis on its smooth tangent, and those at a corner the corner's frame.
+  /// 40 degrees keeps 45-degree chamfers; on Mesh_3's smooth models at the
+  /// default size the few facets more than 40 degrees apart form lone kinks,
+  /// which are dropped (doc/sharp_features.md). 180 turns feature detection
+  /// off (except where parts of the domain meet along an edge).
+  double feature_angle_deg = 40;
+  /// Tolerance in radians of each face transport `T(i->j)`.
+  double transport_tolerance = 1e-6;
+  /// The transport scheme.
+  Transport_scheme transport_scheme = Transport_scheme::magnus;
+  /// Relative residual at which the conjugate gradients of the linear
+  /// initialisation stop (the coarse level, if any, is solved to 1/100 of
+  /// it). The smooth part of the solution comes from the coarse level, so a
+  /// loose fine tolerance suffices: on fandisk (10^5 tets) the final energy
+  /// was within 0.4% of the one reached with 1e-6.
+  double linear_tolerance = 1e-4;
+  /// The largest number of conjugate-gradient iterations.
+  int max_linear_iterations = 5000;
+  /// The initialisation first solves a coarse problem on aggregates of about
+  /// this many neighbouring tetrahedra, whose solution starts the fine
+  /// iteration (fewer fine iterations on large meshes). 0 or 1: no coarse level.
+  int aggregate_size = 24;
+  /// The refinement stops when an iteration lowers the energy by less than
+  /// `energy_tolerance` times the energy, three times in a row, or when the
+  /// energy is below `1e-14` times the total face weight.
+  double energy_tolerance = 1e-5;
+  /// The largest number of L-BFGS iterations (0 skips the refinement).
+  int max_refinement_iterations = 1000;
+  /// The number of (step, gradient change) pairs kept by L-BFGS.
+  int lbfgs_memory = 8;
+  /// If set, called at the end of each stage with its name, its duration in
+  /// seconds and a short detail line (for progress output).
+  std::function<void(const std::string& stage, double seconds, const std::string& detail)> progress;
+  /// If set, called after each iteration of the two iterative stages with the
+  /// stage name, the iteration number and its measure (the relative residual
+  /// of the conjugate gradients, the energy of L-BFGS), for progress display.
+  std::function<void(const std::string& stage, int iteration, double measure)> iteration_progress;
+};
+
+/// \ingroup PkgCGALExtFrames
+/// Figures of a `Frame_field_3::compute()` run.
+struct Frame_field_statistics {
+  /// Tetrahedra (frames).
+  std::size_t tets = 0;
+  /// Interior faces (smoothness terms) and boundary faces (alignment terms).
+  std::size_t interior_faces = 0, boundary_faces = 0;
+  /// Boundary tetrahedra with one hard axis, and with two (a frame fixed by
+  /// two non-parallel boundary faces, e.g. along a sharp edge).
+  std::size_t hard_one_axis = 0, hard_two_axes = 0;
+  /// Feature edges, vertices on feature curves and corners (`Sharp_features_3`).
+  std::size_t feature_edges = 0, feature_curve_vertices = 0, feature_corners = 0;
+  /// Tetrahedra whose hard axes come from a feature: a corner's frame or a
+  /// feature edge's tangent.
+  std::size_t feature_tets = 0;
+  /// Face transports that are exactly the identity (constant metric).
+  std::size_t identity_transports = 0;
+  /// Largest transport angle over the faces, in radians.
+  double max_transport_angle = 0;
+  /// Conjugate-gradient iterations of the initialisation and its final relative residual.
+  int linear_iterations = 0;
+  double linear_residual = 0;
+  /// Conjugate-gradient iterations and unknowns of the coarse level (0 without one).
+  int coarse_iterations = 0;
+  std::size_t coarse_unknowns = 0;
+  /// Tetrahedra whose initial SH vector was (near) zero and got the identity.
+  std::size_t degenerate_projections = 0;
+  /// L-BFGS iterations and energy evaluations.
+  int refinement_iterations = 0, energy_evaluations = 0;
+  /// Whether an iteration bound stopped a stage (`max_linear_iterations`
+  /// before the CG residual reached `linear_tolerance`, or
+  /// `max_refinement_iterations` while L-BFGS still made progress): reached
+  /// only on pathological input, and said in the stage's progress line.
+  bool linear_iteration_limit_reached = false, refinement_iteration_limit_reached = false;
+  /// Smoothness energy `sum_f w_f |s_j - D(T_ij) s_i|^2` after the
+  /// projection and at the end.
+  double projected_energy = 0, smoothness_energy = 0;
+  /// The sum of the face weights (the energy of the worst field is about
+  /// twice this; `smoothness_energy / total_face_weight` is a mean).
+  double total_face_weight = 0;
+  /// Boundary alignment: angle between `A^{-1} n` and the nearest frame
+  /// vector `F e_k`, in degrees, over the boundary faces.
+  double boundary_error_mean_deg = 0, boundary_error_max_deg = 0;
+  /// `max |F^T g F - I|` over the tetrahedra (entry-wise), `g` at the centroid.
+  double max_orthonormality_error = 0;
+  /// Seconds per stage: set-up (geometry, weights), face transports, linear
+  /// initialisation, projection, refinement.
+  double seconds_setup = 0, seconds_transports = 0, seconds_linear = 0, seconds_projection = 0,
+         seconds_refinement = 0;
+};
+
+} // namespace CGAL_ext
+
+#endif // CGAL_EXT_FRAME_FIELD_OPTIONS_H
