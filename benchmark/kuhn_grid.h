@@ -3,9 +3,10 @@
 #ifndef CGAL_EXT_BENCHMARK_KUHN_GRID_H
 #define CGAL_EXT_BENCHMARK_KUHN_GRID_H
 
-// The benchmarks' structured mesh: a Kuhn (Freudenthal) grid of n^3 cubes
-// of side h from (lo, lo, lo), 6 tetrahedra per cube around its diagonal,
-// half of them negatively oriented (the builder re-orients them).
+// The benchmarks' structured mesh: CGAL_ext::make_kuhn_grid() of n^3 cubes
+// of side h from (lo, lo, lo), with its interior vertices jittered.
+
+#include <CGAL_ext/make_kuhn_grid.h>
 
 #include <array>
 #include <cstddef>
@@ -22,7 +23,8 @@ inline void kuhn_grid(int n, double lo, double h, std::vector<std::array<double,
   std::mt19937_64 rng(1);
   std::uniform_real_distribution<double> move(-jitter, jitter);
   const std::size_t base = points.size();
-  auto id = [&](int i, int j, int k) { return base + std::size_t((k * (n + 1) + j) * (n + 1) + i); };
+  const CGAL_ext::IO::Medit_mesh g = CGAL_ext::make_kuhn_grid({n, n, n}, h, {lo, lo, lo});
+  // Vertices come x fastest, as (i, j, k) below.
   for (int k = 0; k <= n; ++k)
     for (int j = 0; j <= n; ++j)
       for (int i = 0; i <= n; ++i) {
@@ -34,20 +36,10 @@ inline void kuhn_grid(int n, double lo, double h, std::vector<std::array<double,
         }
         points.push_back(p);
       }
-  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        for (const auto& pm : perms) {
-          // Monotone lattice path from the cube's corner to the opposite one.
-          std::array<int, 3> c{i, j, k};
-          std::array<std::size_t, 4> t{id(i, j, k), 0, 0, 0};
-          for (int s = 0; s < 3; ++s) {
-            ++c[pm[s]];
-            t[std::size_t(s + 1)] = id(c[0], c[1], c[2]);
-          }
-          tets.push_back(t);
-        }
+  for (std::array<std::size_t, 4> t : g.tetrahedra) {
+    for (std::size_t& v : t) v += base;
+    tets.push_back(t);
+  }
 }
 
 } // namespace benchmark_meshes

@@ -18,7 +18,8 @@
 #include <string>
 #include <system_error>
 
-namespace cgal_ext_cli_test {
+namespace CGAL_ext {
+namespace testing {
 
 /// The test data directory (test/data).
 inline const std::string data_dir = CGAL_EXT_TEST_DATA_DIR;
@@ -101,6 +102,7 @@ inline std::string file_with(const std::string& name, const std::string& content
 /// The number of lines (newlines) of a text.
 inline std::size_t lines(const std::string& s) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')); }
 
-} // namespace cgal_ext_cli_test
+} // namespace testing
+} // namespace CGAL_ext
 
 #endif // CGAL_EXT_TEST_CLI_TEST_SUPPORT_H

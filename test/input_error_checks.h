@@ -13,7 +13,8 @@
 #include <cstddef>
 #include <string>
 
-namespace cgal_ext_test {
+namespace CGAL_ext {
+namespace testing {
 
 /// Expects `read()` to throw an `Input_error` naming `path`, at `line`
 /// (0: not checked), about `element`, whose problem contains `words`, and
@@ -34,6 +35,7 @@ void expect_input_error(Read read, const std::string& path, std::size_t line, co
   }
 }
 
-} // namespace cgal_ext_test
+} // namespace testing
+} // namespace CGAL_ext
 
 #endif // CGAL_EXT_TEST_INPUT_ERROR_CHECKS_H

@@ -584,3 +584,41 @@ TEST_CASE("a tetrahedron added on boundary vertices of a block is never accepted
   for (const auto& [k, n] : outcomes) UNSCOPED_INFO(k << ": " << n);
   CHECK(outcomes["near their common vertex"] > 10);
 }
+
+// make_kuhn_grid(): the counts of a Kuhn grid, positive orientation checked
+// exactly, a conforming mesh (every interior facet shared, the boundary the
+// box's 2 * 2 * (xy + yz + zx) triangles), unused vertices dropped when
+// cubes are left out, and its errors.
+TEST_CASE("make_kuhn_grid: counts, exact orientation, conformity, dropped cubes and errors", "[build][kuhn]") {
+  const IO::Medit_mesh g = make_kuhn_grid({3, 2, 4}, 0.5, {1, -2, 0.25});
+  CHECK(g.vertices.size() == 4 * 3 * 5);
+  CHECK(g.tetrahedra.size() == 6 * 3 * 2 * 4);
+  CHECK(g.vertex_references.size() == g.vertices.size());
+  CHECK(g.tetrahedron_references.size() == g.tetrahedra.size());
+  CHECK(g.vertices.front() == std::array<double, 3>{1, -2, 0.25});
+  CHECK(g.vertices[1] == std::array<double, 3>{1.5, -2, 0.25}); // x fastest
+  CHECK(g.vertices.back() == std::array<double, 3>{2.5, -1, 2.25});
+  Tr tr;
+  const Tet_mesh_build_report report = build_triangulation_from_tets(g.vertices, g.tetrahedra, {}, tr);
+  CHECK(report.reoriented_tets == 0); // every tetrahedron given positively oriented
+  CHECK(report.unused_vertices == 0);
+  CHECK(report.boundary_facets == 2 * 2 * (3 * 2 + 2 * 4 + 4 * 3));
+  check_adjacency(tr);
+
+  // The centre cube of 3^3 left out: a cavity; its 8 vertices stay (other cubes use them).
+  const IO::Medit_mesh hollow = make_kuhn_grid({3, 3, 3}, 1, {0, 0, 0}, [](int i, int j, int k) { return !(i == 1 && j == 1 && k == 1); });
+  CHECK(hollow.vertices.size() == 64);
+  CHECK(hollow.tetrahedra.size() == 6 * 26);
+  // Only the cubes (0,0,0) and (1,1,1), touching at one vertex: 8 + 8 - 1 vertices.
+  const IO::Medit_mesh touching = make_kuhn_grid({2, 2, 2}, 1, {0, 0, 0}, [](int i, int j, int k) { return i == j && j == k; });
+  CHECK(touching.vertices.size() == 15);
+  for (const auto& t : touching.tetrahedra)
+    for (std::size_t v : t) CHECK(v < touching.vertices.size());
+  Tr tr2;
+  CHECK(build_triangulation_from_tets(touching.vertices, touching.tetrahedra, {}, tr2).reoriented_tets == 0);
+
+  CHECK_THROWS_AS(make_kuhn_grid({0, 1, 1}), std::invalid_argument);
+  CHECK_THROWS_AS(make_kuhn_grid({1, 1, 1}, 0.0), std::invalid_argument);
+  CHECK_THROWS_AS(make_kuhn_grid({1, 1, 1}, std::nan("")), std::invalid_argument);
+  CHECK_THROWS_AS(make_kuhn_grid({2, 2, 2}, 1, {0, 0, 0}, [](int, int, int) { return false; }), std::invalid_argument);
+}

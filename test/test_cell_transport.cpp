@@ -23,7 +23,7 @@
 
 namespace {
 
-using cgal_ext_test::Random;
+using CGAL_ext::testing::Random;
 
 using M3 = Eigen::Matrix3d;
 using V3 = Eigen::Vector3d;
@@ -230,10 +230,10 @@ TEST_CASE("reversal, composition and scale invariance", "[transport]") {
 namespace {
 
 // MATH.md section 6 (test_support.h).
-using cgal_ext_test::flat_metric::jacobian;
-using cgal_ext_test::flat_metric::polar_rotation;
-M3 smooth_A(const V3& x) { return cgal_ext_test::flat_metric::sqrt_metric(x); }
-M3 smooth_curl(const V3& x) { return cgal_ext_test::flat_metric::curl(x); }
+using CGAL_ext::testing::flat_metric::jacobian;
+using CGAL_ext::testing::flat_metric::polar_rotation;
+M3 smooth_A(const V3& x) { return CGAL_ext::testing::flat_metric::sqrt_metric(x); }
+M3 smooth_curl(const V3& x) { return CGAL_ext::testing::flat_metric::curl(x); }
 
 } // namespace
 

@@ -12,7 +12,7 @@
 #include <sstream>
 #include <string>
 
-using namespace cgal_ext_cli_test;
+using namespace CGAL_ext::testing;
 
 TEST_CASE("help documents every subcommand", "[cli]") {
   const Run r = run("--help");

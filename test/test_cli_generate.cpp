@@ -22,7 +22,7 @@
 #include <map>
 #include <string>
 
-using namespace cgal_ext_cli_test;
+using namespace CGAL_ext::testing;
 
 namespace {
 
@@ -110,7 +110,7 @@ TEST_CASE("generate writes the six files, and the identity metric on a cube give
   CHECK(perm.tets == nt);
   CHECK(perm.faces.empty());
 
-  const auto vtu = cgal_ext_vtu_test::read_vtu((out / "frames.vtu").string());
+  const auto vtu = CGAL_ext::testing::read_vtu((out / "frames.vtu").string());
   CHECK(vtu.number_of_cells == nt);
   CHECK(vtu.number_of_points == input.vertices.size());
   for (const char* name : {"hex_edge_1", "hex_edge_2", "hex_edge_3", "parameter_gradient_1", "parameter_gradient_2",
@@ -152,7 +152,7 @@ TEST_CASE("generate writes the six files, and the identity metric on a cube give
     CHECK(b[t] == (on_boundary ? 1.0 : 0.0));
   }
 
-  const auto sing = cgal_ext_vtu_test::read_vtu((out / "singularities.vtu").string());
+  const auto sing = CGAL_ext::testing::read_vtu((out / "singularities.vtu").string());
   CHECK(sing.number_of_cells == 0);
   CHECK(CGAL_ext::IO::read_medit_mesh((out / "mesh.mesh").string()).tetrahedra == input.tetrahedra);
 }
@@ -361,7 +361,7 @@ TEST_CASE("generate meshes a built-in shape with Mesh_3", "[cli][generate]") {
   const double edges = number_after(report, "singular_edges");
   CHECK(edges > 0);
   CHECK(number_after(report, "interior_ends") == 0);
-  const auto sing = cgal_ext_vtu_test::read_vtu((out / "singularities.vtu").string());
+  const auto sing = CGAL_ext::testing::read_vtu((out / "singularities.vtu").string());
   CHECK(sing.number_of_cells == edges);
   for (const char* name : {"type", "index", "valence", "meshable", "turn_deg", "axis_angle_deg", "edge_axis_angle_deg",
                            "curve"})

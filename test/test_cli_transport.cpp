@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-using namespace cgal_ext_cli_test;
+using namespace CGAL_ext::testing;
 
 namespace {
 

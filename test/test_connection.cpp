@@ -16,7 +16,7 @@
 
 namespace {
 
-using cgal_ext_test::Random;
+using CGAL_ext::testing::Random;
 
 using M3 = Eigen::Matrix3d;
 using V3 = Eigen::Vector3d;

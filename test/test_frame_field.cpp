@@ -46,25 +46,11 @@ double frame_angle_deg(const Eigen::Matrix3d& R, const Eigen::Matrix3d& Q) {
   return octahedral_distance(R, Q) * 180 / M_PI;
 }
 
-// MATH.md section 6's map and its inverse by Newton's method.
-Eigen::Vector3d phi(const Eigen::Vector3d& x) {
-  return {x(0) + 0.4 * std::sin(x(1) + x(2)), x(1) + 0.3 * std::sin(x(2) * x(0)), x(2) + 0.5 * std::sin(x(0))};
-}
-Eigen::Vector3d phi_inverse(const Eigen::Vector3d& X) {
-  Eigen::Vector3d x = X;
-  for (int it = 0; it < 50; ++it) {
-    const Eigen::Vector3d r = phi(x) - X;
-    if (r.norm() < 1e-15) break;
-    x -= cgal_ext_test::flat_metric::jacobian(x).lu().solve(r);
-  }
-  return x;
-}
-
 // Phi^{-1}([0,1]^3): a Kuhn grid of n^3 cubes in Phi-space, pulled back.
 std::unique_ptr<Mesh> pulled_back_box(int n) {
   testing::Test_mesh m = testing::kuhn_grid(n, n, n, 1.0 / n);
   for (auto& p : m.points) {
-    const Eigen::Vector3d x = phi_inverse(Eigen::Vector3d(p[0], p[1], p[2]));
+    const Eigen::Vector3d x = CGAL_ext::testing::flat_metric::map_inverse(Eigen::Vector3d(p[0], p[1], p[2]));
     p = {x(0), x(1), x(2)};
   }
   return make_mesh(m);
@@ -73,7 +59,7 @@ std::unique_ptr<Mesh> pulled_back_box(int n) {
 // g = J^T J of MATH.md section 6 sampled at the vertices.
 Field flat_metric_field(const Tr& tr) {
   return Field(tr, [](const Tr::Point& p) {
-    return cgal_ext_test::flat_metric::metric(Eigen::Vector3d(p.x(), p.y(), p.z()));
+    return CGAL_ext::testing::flat_metric::metric(Eigen::Vector3d(p.x(), p.y(), p.z()));
   });
 }
 
@@ -134,7 +120,7 @@ TEST_CASE("flat metric g = J^T J on Phi^-1(box) recovers F = J^-1, better under 
     double sum = 0, mx = 0;
     for (std::size_t i = 0; i < ff.size(); ++i) {
       // Exact rotation field R = Q^T (MATH.md section 6), so F = A^-1 Q^T = J^-1.
-      const Eigen::Matrix3d Q = cgal_ext_test::flat_metric::polar_rotation(ff.centroid(i));
+      const Eigen::Matrix3d Q = CGAL_ext::testing::flat_metric::polar_rotation(ff.centroid(i));
       const double e = frame_angle_deg(ff.rotation(i), Q.transpose());
       sum += e;
       mx = std::max(mx, e);
@@ -222,13 +208,13 @@ TEST_CASE("flat metric: the gradients approach grad Phi / h and become curl-free
   for (int n : {3, 6, 9}) {
     auto mesh = pulled_back_box(n);
     const Field field(mesh->tr, [&](const Tr::Point& p) {
-      return Eigen::Matrix3d(cgal_ext_test::flat_metric::metric(Eigen::Vector3d(p.x(), p.y(), p.z())) / (h * h));
+      return Eigen::Matrix3d(CGAL_ext::testing::flat_metric::metric(Eigen::Vector3d(p.x(), p.y(), p.z())) / (h * h));
     });
     Frames ff(field);
     ff.compute();
     double err = 0;
     for (std::size_t i = 0; i < ff.size(); ++i) {
-      const Eigen::Matrix3d target = cgal_ext_test::flat_metric::jacobian(ff.centroid(i)).transpose() / h; // columns grad Phi_k / h
+      const Eigen::Matrix3d target = CGAL_ext::testing::flat_metric::jacobian(ff.centroid(i)).transpose() / h; // columns grad Phi_k / h
       const Eigen::Matrix3d G = ff.parameter_gradients(i);
       const Eigen::Matrix3d M = closest_octahedral_matching(target, G).G; // G M ~ target
       err = std::max(err, (G * M - target).norm() / target.norm());
@@ -290,7 +276,7 @@ TEST_CASE("the field does not depend on the scale of the metric, from 1e-300 I t
   auto mesh = make_mesh(m);
   auto metric = [](double c) {
     return [c](const Tr::Point& p) {
-      return Eigen::Matrix3d(c * cgal_ext_test::flat_metric::metric(Eigen::Vector3d(p.x(), p.y(), p.z()) / 24.0));
+      return Eigen::Matrix3d(c * CGAL_ext::testing::flat_metric::metric(Eigen::Vector3d(p.x(), p.y(), p.z()) / 24.0));
     };
   };
   const Field unit(mesh->tr, metric(1.0));
@@ -321,7 +307,7 @@ TEST_CASE("the result does not depend on the number of threads", "[frame_field]"
   testing::Test_mesh m = testing::jittered_kuhn_grid(4, 7);
   auto mesh = make_mesh(m);
   const Field field(mesh->tr, [](const Tr::Point& p) {
-    return cgal_ext_test::flat_metric::metric(Eigen::Vector3d(p.x(), p.y(), p.z()) / 24.0);
+    return CGAL_ext::testing::flat_metric::metric(Eigen::Vector3d(p.x(), p.y(), p.z()) / 24.0);
   });
   std::vector<Eigen::Matrix3d> one, two;
   double e1, e2;

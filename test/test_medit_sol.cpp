@@ -51,7 +51,7 @@ std::string write_file(const std::string& name, const std::string& text) {
 // Reads and expects an Input_error (see expect_input_error).
 void expect_error(const std::string& path, std::size_t expected_count, std::size_t line, const std::string& element,
                   const std::string& words) {
-  cgal_ext_test::expect_input_error([&] { read_medit_sol(path, expected_count); }, path, line, element, words);
+  CGAL_ext::testing::expect_input_error([&] { read_medit_sol(path, expected_count); }, path, line, element, words);
 }
 
 const char* header = "MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n";

@@ -9,6 +9,7 @@
 #include <CGAL_ext/Metric_field_3.h>
 #include <CGAL_ext/Metric_tensor.h>
 #include <CGAL_ext/build_triangulation_from_tets.h>
+#include <CGAL_ext/make_kuhn_grid.h>
 
 #include <catch2/catch.hpp>
 
@@ -27,7 +28,7 @@
 
 namespace {
 
-using cgal_ext_test::Random;
+using CGAL_ext::testing::Random;
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Tr = CGAL_ext::Tet_mesh_triangulation_3<K>;
@@ -44,26 +45,8 @@ struct Mesh {
 
 // The unit cube cut into n^3 cubes, each into 6 Kuhn tets around its main diagonal.
 Mesh kuhn_grid(int n) {
-  Mesh m;
-  auto id = [n](int i, int j, int k) { return static_cast<std::size_t>((k * (n + 1) + j) * (n + 1) + i); };
-  for (int k = 0; k <= n; ++k)
-    for (int j = 0; j <= n; ++j)
-      for (int i = 0; i <= n; ++i) m.points.push_back({double(i) / n, double(j) / n, double(k) / n});
-  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        for (const auto& p : perms) {
-          std::array<int, 3> c{i, j, k};
-          std::array<std::size_t, 4> t;
-          t[0] = id(c[0], c[1], c[2]);
-          for (int s = 0; s < 3; ++s) {
-            ++c[p[s]];
-            t[s + 1] = id(c[0], c[1], c[2]);
-          }
-          m.tets.push_back(t);
-        }
-  return m;
+  CGAL_ext::IO::Medit_mesh g = CGAL_ext::make_kuhn_grid({n, n, n}, 1.0 / n);
+  return Mesh{std::move(g.vertices), std::move(g.tetrahedra)};
 }
 
 V3 vec(const Point& p) { return V3(p.x(), p.y(), p.z()); }
@@ -396,10 +379,10 @@ TEST_CASE("cells outside the domain are refused", "[metric_field]") {
 namespace {
 
 // MATH.md section 6 (test_support.h).
-using cgal_ext_test::flat_metric::jacobian;
-M3 phi_metric(const V3& x) { return cgal_ext_test::flat_metric::metric(x); }
-M3 phi_A(const V3& x) { return cgal_ext_test::flat_metric::sqrt_metric(x); }
-M3 phi_curl(const V3& x) { return cgal_ext_test::flat_metric::curl(x); }
+using CGAL_ext::testing::flat_metric::jacobian;
+M3 phi_metric(const V3& x) { return CGAL_ext::testing::flat_metric::metric(x); }
+M3 phi_A(const V3& x) { return CGAL_ext::testing::flat_metric::sqrt_metric(x); }
+M3 phi_curl(const V3& x) { return CGAL_ext::testing::flat_metric::curl(x); }
 
 } // namespace
 

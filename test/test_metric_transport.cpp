@@ -38,9 +38,9 @@ namespace {
 
 using namespace CGAL_ext;
 using namespace CGAL_ext::testing;
-using cgal_ext_test::M3;
-using cgal_ext_test::Random;
-using cgal_ext_test::V3;
+using CGAL_ext::testing::M3;
+using CGAL_ext::testing::Random;
+using CGAL_ext::testing::V3;
 using Tr = Tet_mesh_triangulation_3<>;
 using Point = Tr::Point;
 using Field = Metric_field_3<Tr>;
@@ -477,7 +477,7 @@ double observed_order(const std::vector<double>& hs, const std::vector<double>& 
 // cubes; returns the max error over the pairs per level.
 template <class Make_mesh>
 std::vector<double> convergence_table(const char* title, Make_mesh make_mesh) {
-  namespace flat = cgal_ext_test::flat_metric;
+  namespace flat = CGAL_ext::testing::flat_metric;
   // Fixed pairs in the box; the first is the one of MATH.md section 6.
   const std::pair<V3, V3> pairs[] = {{V3(0.1, 0.2, -0.3), V3(0.9, -0.4, 0.5)},
                                      {V3(-0.4, -0.3, 0.9), V3(0.8, 0.7, -0.2)},

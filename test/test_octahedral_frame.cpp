@@ -43,7 +43,7 @@ extern "C" void* malloc(std::size_t n) {
 
 namespace {
 
-using cgal_ext_test::Random;
+using CGAL_ext::testing::Random;
 
 using M3 = Eigen::Matrix3d;
 using V3 = Eigen::Vector3d;

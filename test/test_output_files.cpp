@@ -38,8 +38,8 @@ using CGAL_ext::IO::Vtu_options;
 using CGAL_ext::IO::write_fra;
 using CGAL_ext::IO::write_vtu_segments;
 using CGAL_ext::IO::write_vtu_tetrahedra;
-using cgal_ext_vtu_test::Data_array;
-using cgal_ext_vtu_test::read_vtu;
+using CGAL_ext::testing::Data_array;
+using CGAL_ext::testing::read_vtu;
 using Points = std::vector<std::array<double, 3>>;
 using Frames = std::vector<std::array<double, 9>>;
 
@@ -120,7 +120,7 @@ void check_array(const std::map<std::string, Data_array>& arrays, const Vtu_arra
 
 // Checks the geometry and cells of a decoded file.
 template <std::size_t N>
-void check_grid(const cgal_ext_vtu_test::Vtu_content& v, const Points& points,
+void check_grid(const CGAL_ext::testing::Vtu_content& v, const Points& points,
                 const std::vector<std::array<std::size_t, N>>& cells, double vtk_type, const std::string& format) {
   CHECK(v.root_attributes.at("type") == "UnstructuredGrid");
   CHECK(v.root_attributes.at("byte_order") == "LittleEndian");
@@ -184,12 +184,12 @@ void expect_invalid(const std::string& path, const std::function<void()>& write,
 
 // Expects read_perm(path) to throw an Input_error (see expect_input_error).
 void expect_perm_error(const std::string& path, std::size_t line, const std::string& element, const std::string& words) {
-  cgal_ext_test::expect_input_error([&] { CGAL_ext::IO::read_perm(path); }, path, line, element, words);
+  CGAL_ext::testing::expect_input_error([&] { CGAL_ext::IO::read_perm(path); }, path, line, element, words);
 }
 
 // Expects read_fra(path) to throw an Input_error (see expect_input_error).
 void expect_fra_error(const std::string& path, std::size_t line, const std::string& element, const std::string& words) {
-  cgal_ext_test::expect_input_error([&] { read_fra(path); }, path, line, element, words);
+  CGAL_ext::testing::expect_input_error([&] { read_fra(path); }, path, line, element, words);
 }
 
 } // namespace
@@ -198,7 +198,7 @@ void expect_fra_error(const std::string& path, std::size_t line, const std::stri
 
 TEST_CASE("the test reader's base64 decoder follows RFC 4648", "[vtu][reader]") {
   auto text = [](const std::string& s) {
-    const auto b = cgal_ext_vtu_test::base64_decode(s);
+    const auto b = CGAL_ext::testing::base64_decode(s);
     return std::string(b.begin(), b.end());
   };
   // RFC 4648 section 10 test vectors.
@@ -215,7 +215,7 @@ TEST_CASE("the test reader's base64 decoder follows RFC 4648", "[vtu][reader]") 
 }
 
 TEST_CASE("the test reader refuses XML that is not well formed", "[vtu][reader]") {
-  using cgal_ext_vtu_test::parse_xml;
+  using CGAL_ext::testing::parse_xml;
   const auto good = parse_xml("<?xml version=\"1.0\"?>\n<A x=\"1\" y='2'><B/><C z=\"&lt;&amp;\">t&gt;</C></A>\n");
   CHECK(good->name == "A");
   CHECK(good->attributes.at("y") == "2");
@@ -231,7 +231,7 @@ TEST_CASE("the test reader refuses XML that is not well formed", "[vtu][reader]"
   CHECK_THROWS(parse_xml("<A>a & b</A>"));         // stray '&'
   CHECK_THROWS(parse_xml("<A x=\"1\"y=\"2\"/>"));  // no space between attributes
   CHECK_THROWS(parse_xml(" <?xml version=\"1.0\"?><A/>"));
-  CHECK_THROWS(cgal_ext_vtu_test::parse_vtu("<VTKFile type=\"UnstructuredGrid\"/>"));
+  CHECK_THROWS(CGAL_ext::testing::parse_vtu("<VTKFile type=\"UnstructuredGrid\"/>"));
 }
 
 // --- VTU ---------------------------------------------------------------------

@@ -10,12 +10,14 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <Eigen/LU>
 
 #include <array>
 #include <cmath>
 #include <random>
 
-namespace cgal_ext_test {
+namespace CGAL_ext {
+namespace testing {
 
 using M3 = Eigen::Matrix3d;
 using V3 = Eigen::Vector3d;
@@ -49,6 +51,22 @@ struct Random {
 /// polar rotation Q = J A^{-1}; the exact transport is T(a->b) = Q(b)^T Q(a).
 namespace flat_metric {
 
+/// The map Phi itself.
+inline V3 map(const V3& x) {
+  return {x(0) + 0.4 * std::sin(x(1) + x(2)), x(1) + 0.3 * std::sin(x(2) * x(0)), x(2) + 0.5 * std::sin(x(0))};
+}
+inline M3 jacobian(const V3& x);
+/// Phi^{-1}(X) by Newton's method (to 1e-15).
+inline V3 map_inverse(const V3& X) {
+  V3 x = X;
+  for (int it = 0; it < 50; ++it) {
+    const V3 r = map(x) - X;
+    if (r.norm() < 1e-15) break;
+    x -= jacobian(x).lu().solve(r);
+  }
+  return x;
+}
+/// Its Jacobian J.
 inline M3 jacobian(const V3& x) {
   M3 J;
   const double c1 = 0.4 * std::cos(x(1) + x(2)), c2 = 0.3 * std::cos(x(2) * x(0));
@@ -79,6 +97,7 @@ inline M3 curl(const V3& x) {
 inline M3 polar_rotation(const V3& x) { return jacobian(x) * sqrt_metric(x).inverse(); }
 
 } // namespace flat_metric
-} // namespace cgal_ext_test
+} // namespace testing
+} // namespace CGAL_ext
 
 #endif

@@ -22,7 +22,8 @@
 #include <string>
 #include <vector>
 
-namespace cgal_ext_vtu_test {
+namespace CGAL_ext {
+namespace testing {
 
 /// An XML element: name, attributes, text content (entities decoded,
 /// concatenated over the whole element) and children.
@@ -391,6 +392,7 @@ inline Vtu_content read_vtu(const std::string& path) {
   return parse_vtu(ss.str());
 }
 
-} // namespace cgal_ext_vtu_test
+} // namespace testing
+} // namespace CGAL_ext
 
 #endif // CGAL_EXT_TEST_VTU_TEST_READER_H

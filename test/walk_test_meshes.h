@@ -3,11 +3,11 @@
 #ifndef CGAL_EXT_TEST_WALK_TEST_MESHES_H
 #define CGAL_EXT_TEST_WALK_TEST_MESHES_H
 
-// Shared by the segment walk tests: Kuhn (Freudenthal) grids, each unit
-// cube split into 6 tetrahedra around its main diagonal, so that the grid
-// stays conforming when cubes are removed (non-convex domains, tunnels,
-// cubes touching along an edge or at a vertex); and the bit-for-bit
-// comparison of two walks' pieces.
+// Shared by the segment walk tests: Kuhn grids with cubes left out
+// (non-convex domains, tunnels, cubes touching along an edge or at a
+// vertex) and the bit-for-bit comparison of two walks' pieces.
+
+#include <CGAL_ext/make_kuhn_grid.h>
 
 #include <algorithm>
 #include <array>
@@ -36,44 +36,12 @@ struct Walk_test_mesh {
 };
 
 /// The Kuhn grid of nx * ny * nz cubes of side `scale`, keeping the cubes
-/// (i, j, k) for which keep(i, j, k) is true. Only used vertices are output;
-/// all tetrahedra are positively oriented.
+/// (i, j, k) for which keep(i, j, k) is true (`CGAL_ext::make_kuhn_grid()`).
 /// \param keep callable (int, int, int) -> bool
 template <class Keep>
 Walk_test_mesh make_kuhn_grid(int nx, int ny, int nz, Keep keep, double scale = 1.0) {
-  Walk_test_mesh m;
-  const auto vid = [&](int i, int j, int k) { return (std::size_t(i) * (ny + 1) + j) * (nz + 1) + k; };
-  std::vector<std::array<std::size_t, 4>> raw;
-  static const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  static const bool odd[6] = {false, true, true, false, false, true};
-  for (int i = 0; i < nx; ++i)
-    for (int j = 0; j < ny; ++j)
-      for (int k = 0; k < nz; ++k) {
-        if (!keep(i, j, k)) continue;
-        for (int p = 0; p < 6; ++p) {
-          int c[3] = {i, j, k};
-          std::array<std::size_t, 4> t;
-          t[0] = vid(c[0], c[1], c[2]);
-          for (int s = 0; s < 3; ++s) {
-            ++c[perms[p][s]];
-            t[s + 1] = vid(c[0], c[1], c[2]);
-          }
-          if (odd[p]) std::swap(t[0], t[1]);
-          raw.push_back(t);
-        }
-      }
-  std::vector<std::size_t> remap(std::size_t(nx + 1) * (ny + 1) * (nz + 1), std::size_t(-1));
-  for (auto& t : raw)
-    for (auto& v : t) {
-      if (remap[v] == std::size_t(-1)) {
-        remap[v] = m.points.size();
-        const int k = int(v % (nz + 1)), j = int((v / (nz + 1)) % (ny + 1)), i = int(v / ((nz + 1) * (ny + 1)));
-        m.points.push_back({i * scale, j * scale, k * scale});
-      }
-      v = remap[v];
-    }
-  m.tets = std::move(raw);
-  return m;
+  IO::Medit_mesh g = CGAL_ext::make_kuhn_grid({nx, ny, nz}, scale, {0, 0, 0}, keep);
+  return Walk_test_mesh{std::move(g.vertices), std::move(g.tetrahedra)};
 }
 
 } // namespace testing

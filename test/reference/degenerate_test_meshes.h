@@ -13,6 +13,7 @@
 // double: grids are scaled by 6, and jitter is a multiple of 3/16.
 
 #include <CGAL_ext/IO/Medit_mesh.h>
+#include <CGAL_ext/make_kuhn_grid.h>
 
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -65,20 +66,6 @@ inline double uniform_real(std::mt19937_64& rng, double lo, double hi) {
 }
 
 // Drops unused points and renumbers.
-inline void compact(Test_mesh& m) {
-  std::vector<std::size_t> map(m.points.size(), std::size_t(-1));
-  std::vector<std::array<double, 3>> pts;
-  for (auto& t : m.tets)
-    for (auto& v : t) {
-      if (map[v] == std::size_t(-1)) map[v] = 0; // mark
-    }
-  for (std::size_t i = 0; i < m.points.size(); ++i)
-    if (map[i] != std::size_t(-1)) map[i] = pts.size(), pts.push_back(m.points[i]);
-  for (auto& t : m.tets)
-    for (auto& v : t) v = map[v];
-  m.points = std::move(pts);
-}
-
 inline void orient_positively(Test_mesh& m) {
   for (auto& t : m.tets)
     if (tet_orientation(m.points, t) == CGAL::NEGATIVE) std::swap(t[2], t[3]);
@@ -86,36 +73,15 @@ inline void orient_positively(Test_mesh& m) {
 
 } // namespace internal
 
-/// Kuhn/Freudenthal grid of nx*ny*nz cubes of side `scale`: each cube is split
-/// into 6 tetrahedra around its diagonal (0,0,0)-(1,1,1), consistently across
-/// cubes. `keep(i, j, k)` selects the cubes (all by default).
+/// Kuhn/Freudenthal grid of nx*ny*nz cubes of side `scale`
+/// (`make_kuhn_grid()`), with a name for messages.
 inline Test_mesh kuhn_grid(int nx, int ny, int nz, double scale = 6,
                            std::function<bool(int, int, int)> keep = nullptr, std::string name = "") {
   Test_mesh m;
   m.name = name.empty() ? "kuhn_" + std::to_string(nx) + "x" + std::to_string(ny) + "x" + std::to_string(nz) : name;
-  auto id = [&](int i, int j, int k) { return static_cast<std::size_t>((k * (ny + 1) + j) * (nx + 1) + i); };
-  for (int k = 0; k <= nz; ++k)
-    for (int j = 0; j <= ny; ++j)
-      for (int i = 0; i <= nx; ++i) m.points.push_back({scale * i, scale * j, scale * k});
-  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        if (keep && !keep(i, j, k)) continue;
-        for (const auto& pm : perms) {
-          // Monotone lattice path from the cube's corner to the opposite one.
-          std::array<int, 3> c{i, j, k};
-          std::array<std::size_t, 4> t;
-          t[0] = id(c[0], c[1], c[2]);
-          for (int s = 0; s < 3; ++s) {
-            ++c[pm[s]];
-            t[s + 1] = id(c[0], c[1], c[2]);
-          }
-          m.tets.push_back(t);
-        }
-      }
-  internal::compact(m);
-  internal::orient_positively(m);
+  IO::Medit_mesh g = make_kuhn_grid({nx, ny, nz}, scale, {0, 0, 0}, keep);
+  m.points = std::move(g.vertices);
+  m.tets = std::move(g.tetrahedra);
   return m;
 }
 
