@@ -8,7 +8,7 @@
 //
 // Meshes: Kuhn grids of n^3 cubes (6 n^3 tets: n = 12 gives 10,368, n = 55
 // gives 998,250) of the box [-0.5, 1]^3, with the smooth metric g = J^T J of
-// MATH.md section 6 sampled at the vertices. Pairs: "neighbour" (b at one
+// doc/math.md section 6 sampled at the vertices. Pairs: "neighbour" (b at one
 // mean edge length from a, random direction) and "crossing" (a and b uniform
 // in the box, so the segment crosses about 2.5 n cells). For each scheme and
 // tolerance it reports transports per second (wall time of the TBB batch,
@@ -49,7 +49,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// MATH.md section 6.
+// doc/math.md section 6.
 Eigen::Matrix3d flat_metric(const Point& p) {
   const double x = p.x(), y = p.y(), z = p.z();
   Eigen::Matrix3d J;
@@ -114,7 +114,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: benchmark_transport [n1 = 12] [n2 = 55] [pairs = 2000] [seed = 1]\n");
     return 2;
   }
-  std::printf("Transport T(a->b) of the MATH.md section 6 metric on Kuhn grids of [-0.5, 1]^3; %zu pairs per class\n"
+  std::printf("Transport T(a->b) of the doc/math.md section 6 metric on Kuhn grids of [-0.5, 1]^3; %zu pairs per class\n"
               "(crossing: %zu; 20x fewer on the rough metric); wall time of the TBB batch, best of up to 3;\n"
               "W evaluations per transport.\n\n",
               npairs, std::max<std::size_t>(npairs / 10, 1));

@@ -1,8 +1,8 @@
 // Copyright (c) 2026 CGAL Metric Frames contributors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
-// Transport inside one cell (MATH.md section 4): accuracy of both schemes
+// Transport inside one cell (doc/math.md section 4): accuracy of both schemes
 // against an independent high-accuracy integration, evaluation counts, the
-// analytic check of MATH.md section 6, exactness for a constant metric,
+// analytic check of doc/math.md section 6, exactness for a constant metric,
 // reversal, composition and scale invariance.
 #include <CGAL_ext/Cell_transport_3.h>
 #include <CGAL_ext/Connection_3.h>
@@ -32,7 +32,7 @@ using CGAL_ext::Transport_scheme;
 
 
 // A random tet with random vertex metrics, and the PL field in it, computed
-// here with the 4x4 barycentric matrix of MATH.md section 2 (independently of
+// here with the 4x4 barycentric matrix of doc/math.md section 2 (independently of
 // Metric_field_3).
 struct Tet_case {
   std::array<V3, 4> p;
@@ -229,7 +229,7 @@ TEST_CASE("reversal, composition and scale invariance", "[transport]") {
 
 namespace {
 
-// MATH.md section 6 (test_support.h).
+// doc/math.md section 6 (test_support.h).
 using CGAL_ext::testing::flat_metric::jacobian;
 using CGAL_ext::testing::flat_metric::polar_rotation;
 M3 smooth_A(const V3& x) { return CGAL_ext::testing::flat_metric::sqrt_metric(x); }
@@ -237,7 +237,7 @@ M3 smooth_curl(const V3& x) { return CGAL_ext::testing::flat_metric::curl(x); }
 
 } // namespace
 
-TEST_CASE("analytic check of MATH.md section 6: T(a->b) = Q(b)^T Q(a)", "[transport]") {
+TEST_CASE("analytic check of doc/math.md section 6: T(a->b) = Q(b)^T Q(a)", "[transport]") {
   const V3 a(0.1, 0.2, -0.3), b(0.9, -0.4, 0.5);
   for (int i = 0; i <= 20; ++i) REQUIRE(jacobian(a + (i / 20.0) * (b - a)).determinant() > 0);
   auto u = [&](double t) -> V3 {

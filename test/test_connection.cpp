@@ -1,6 +1,6 @@
 // Copyright (c) 2026 CGAL Metric Frames contributors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
-// The connection one-form (MATH.md section 3): the closed form against the
+// The connection one-form (doc/math.md section 3): the closed form against the
 // 9x9 system, the system matrix against its definition, det M = -2 det(A)^3.
 #include <CGAL_ext/Connection_3.h>
 #include <CGAL_ext/Metric_tensor.h>
@@ -32,7 +32,7 @@ TEST_CASE("cross_product_matrix is the cross product", "[connection]") {
   }
 }
 
-TEST_CASE("connection_system_matrix follows the block definition of MATH.md", "[connection]") {
+TEST_CASE("connection_system_matrix follows the block definition of doc/math.md", "[connection]") {
   // Block row i of M vec(W) must be A^j x W_k - A^k x W_j for (i, j, k) cyclic,
   // i.e. -[A^3]_x W_2 + [A^2]_x W_3 for the first block row.
   Random r(2);

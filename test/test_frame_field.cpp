@@ -1,7 +1,7 @@
 // Copyright (c) 2026 CGAL Metric Frames contributors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
-// Frame-field generation: the analytic cases of issue 5 and MATH.md section 6
+// Frame-field generation: the analytic cases of issue 5 and doc/math.md section 6
 // (identity and constant metrics on a box, the flat metric g = J^T J on
 // Phi^{-1}(box)), singularity bookkeeping, and thread-count independence.
 #include <CGAL_ext/Frame_field_3.h>
@@ -56,7 +56,7 @@ std::unique_ptr<Mesh> pulled_back_box(int n) {
   return make_mesh(m);
 }
 
-// g = J^T J of MATH.md section 6 sampled at the vertices.
+// g = J^T J of doc/math.md section 6 sampled at the vertices.
 Field flat_metric_field(const Tr& tr) {
   return Field(tr, [](const Tr::Point& p) {
     return CGAL_ext::testing::flat_metric::metric(Eigen::Vector3d(p.x(), p.y(), p.z()));
@@ -110,7 +110,7 @@ TEST_CASE("constant anisotropic metric diag(1,16,4): F = A^-1 up to the octahedr
 }
 
 TEST_CASE("flat metric g = J^T J on Phi^-1(box) recovers F = J^-1, better under refinement", "[frame_field]") {
-  // MATH.md section 6: the box [0,1]^3 in Phi-space, pulled back.
+  // doc/math.md section 6: the box [0,1]^3 in Phi-space, pulled back.
   std::vector<double> mean_err, max_err, boundary_mean;
   for (int n : {3, 6, 9}) {
     auto mesh = pulled_back_box(n);
@@ -119,7 +119,7 @@ TEST_CASE("flat metric g = J^T J on Phi^-1(box) recovers F = J^-1, better under 
     const Frame_field_statistics& st = ff.compute();
     double sum = 0, mx = 0;
     for (std::size_t i = 0; i < ff.size(); ++i) {
-      // Exact rotation field R = Q^T (MATH.md section 6), so F = A^-1 Q^T = J^-1.
+      // Exact rotation field R = Q^T (doc/math.md section 6), so F = A^-1 Q^T = J^-1.
       const Eigen::Matrix3d Q = CGAL_ext::testing::flat_metric::polar_rotation(ff.centroid(i));
       const double e = frame_angle_deg(ff.rotation(i), Q.transpose());
       sum += e;
@@ -197,7 +197,7 @@ TEST_CASE("parameter gradients of a constant metric: A n / h for the box's face 
 
 TEST_CASE("flat metric: the gradients approach grad Phi / h and become curl-free under refinement",
           "[frame_field][gradients]") {
-  // g = J^T J / h^2 on Phi^{-1}([0,1]^3) (MATH.md section 6): the ideal
+  // g = J^T J / h^2 on Phi^{-1}([0,1]^3) (doc/math.md section 6): the ideal
   // integer-grid map is Phi / h, whose gradients are the rows of J / h. The
   // discrete curl of a gradient field is its circulation around interior
   // edges, through the tets' centroids and the faces' centroids, with the

@@ -145,7 +145,7 @@ TEST_CASE("check_metric_tensor and sqrt_spd work up to the ends of the double ra
   CHECK(check_metric_tensor(1e-300 * M3::Identity()).empty());
 }
 
-TEST_CASE("A is interpolated linearly and the curl matches MATH.md section 2", "[metric_field]") {
+TEST_CASE("A is interpolated linearly and the curl matches doc/math.md section 2", "[metric_field]") {
   Random r(22);
   const Mesh m = kuhn_grid(2);
   Tr tr;
@@ -378,7 +378,7 @@ TEST_CASE("cells outside the domain are refused", "[metric_field]") {
 
 namespace {
 
-// MATH.md section 6 (test_support.h).
+// doc/math.md section 6 (test_support.h).
 using CGAL_ext::testing::flat_metric::jacobian;
 M3 phi_metric(const V3& x) { return CGAL_ext::testing::flat_metric::metric(x); }
 M3 phi_A(const V3& x) { return CGAL_ext::testing::flat_metric::sqrt_metric(x); }

@@ -1,13 +1,13 @@
 // Copyright (c) 2026 CGAL Metric Frames contributors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 // Transport between arbitrary points (Metric_transport_3): exactness for a
-// constant metric; the order of composition (MATH.md section 4) on one cell
+// constant metric; the order of composition (doc/math.md section 4) on one cell
 // split in two; reversal and composition; the tolerance against an
 // independent reference (exact pieces from the brute-force rational simplex
 // reference, A and the curls recomputed here from the tets with the 4x4
-// barycentric matrix of MATH.md section 2, the averaged curls of section 4,
+// barycentric matrix of doc/math.md section 2, the averaged curls of section 4,
 // RK4 with the 9x9 solve for W); leaving a non-convex domain; determinism of
-// the threaded batch; and convergence to the analytic transport of MATH.md
+// the threaded batch; and convergence to the analytic transport of doc/math.md
 // section 6 under refinement.
 #include <CGAL_ext/Connection_3.h>
 #include <CGAL_ext/Metric_field_3.h>
@@ -77,7 +77,7 @@ std::vector<M3> random_metrics(std::size_t n, unsigned seed) {
 // ---------------------------------------------------------------- reference
 // The PL field recomputed from the mesh alone: A = sqrt(g) per vertex, and in
 // each tet the 4x4 barycentric matrix lambda = T [x; 1], d_k A = sum_v T(v, k) A_v
-// (MATH.md section 2), independently of Metric_field_3.
+// (doc/math.md section 2), independently of Metric_field_3.
 struct Reference_field {
   const Test_mesh* mesh;
   std::vector<M3> A;                    // per vertex
@@ -137,7 +137,7 @@ M3 rk4(Generator&& u, int n) {
 }
 
 // The reference transport of the PL field along [q, p]: the pieces of the
-// exact reference, the averaged curls of MATH.md section 4 from the tets that
+// exact reference, the averaged curls of doc/math.md section 4 from the tets that
 // contain each piece's simplex (found by brute force), and RK4 with `steps`
 // steps per piece, W by the 9x9 solve. Counts the pieces by dimension.
 // Returns false if the segment has a gap.
@@ -207,7 +207,7 @@ TEST_CASE("a constant metric gives exactly the identity on every segment", "[met
 
 TEST_CASE("pieces compose left-multiplied in path order: one cell split in two halves", "[metric_transport]") {
   // A segment inside one tet: T(a->c) of the transporter is the one-piece
-  // cell integration, and equals T(b->c) T(a->b) for the midpoint b (MATH.md
+  // cell integration, and equals T(b->c) T(a->b) for the midpoint b (doc/math.md
   // section 4), not T(a->b) T(b->c).
   const Test_mesh m = jittered_kuhn_grid(2, 7);
   const Setup s(m, random_metrics(m.points.size(), 13));
@@ -265,7 +265,7 @@ TEST_CASE("reversal and composition hold within the tolerance", "[metric_transpo
       REQUIRE(bc.ok);
       CHECK(distance(ca.R, ac.R.transpose()) <= 2 * opt.tolerance);
       CHECK(distance(bc.R * ab.R, ac.R) <= 3 * opt.tolerance);
-      // The other order is not the composition (MATH.md section 4) unless the
+      // The other order is not the composition (doc/math.md section 4) unless the
       // rotations commute: this is what makes the check above meaningful.
       if (ab.angle > 1e-3 && bc.angle > 1e-3 && (ab.R * bc.R - bc.R * ab.R).norm() > 1e-6) {
         CHECK(distance(ab.R * bc.R, ac.R) > 10 * opt.tolerance);
@@ -473,12 +473,12 @@ double observed_order(const std::vector<double>& hs, const std::vector<double>& 
   return sxy / sxx;
 }
 
-// The MATH.md section 6 convergence table on meshes of [-0.5, 1]^3 with n^3
+// The doc/math.md section 6 convergence table on meshes of [-0.5, 1]^3 with n^3
 // cubes; returns the max error over the pairs per level.
 template <class Make_mesh>
 std::vector<double> convergence_table(const char* title, Make_mesh make_mesh) {
   namespace flat = CGAL_ext::testing::flat_metric;
-  // Fixed pairs in the box; the first is the one of MATH.md section 6.
+  // Fixed pairs in the box; the first is the one of doc/math.md section 6.
   const std::pair<V3, V3> pairs[] = {{V3(0.1, 0.2, -0.3), V3(0.9, -0.4, 0.5)},
                                      {V3(-0.4, -0.3, 0.9), V3(0.8, 0.7, -0.2)},
                                      {V3(0.0, 0.5, 0.5), V3(0.6, -0.2, 0.1)},
@@ -519,10 +519,10 @@ std::vector<double> convergence_table(const char* title, Make_mesh make_mesh) {
 
 } // namespace
 
-TEST_CASE("MATH.md section 6: the PL transport converges to Q(b)^T Q(a) under refinement", "[metric_transport]") {
+TEST_CASE("doc/math.md section 6: the PL transport converges to Q(b)^T Q(a) under refinement", "[metric_transport]") {
   const std::vector<double> hs = {1.5 / 4, 1.5 / 8, 1.5 / 16, 1.5 / 32};
   const std::vector<double> kuhn =
-      convergence_table("Convergence to the analytic transport (MATH.md section 6), Kuhn grids of [-0.5, 1]^3", [](int n) {
+      convergence_table("Convergence to the analytic transport (doc/math.md section 6), Kuhn grids of [-0.5, 1]^3", [](int n) {
         return transformed(kuhn_grid(n, n, n, 1.5 / n), {1, 1, 1}, {-0.5, -0.5, -0.5}, "");
       });
   const double kuhn_order = observed_order(hs, kuhn);
@@ -536,7 +536,7 @@ TEST_CASE("MATH.md section 6: the PL transport converges to Q(b)^T Q(a) under re
   CHECK(kuhn_order > 1.5);
 
   // Jittered grids (vertices moved by up to 1/4 of the spacing): the
-  // cancellation is lost, and MATH.md section 6's "about first order" is what
+  // cancellation is lost, and doc/math.md section 6's "about first order" is what
   // remains. Reported, and only checked to converge.
   const std::vector<double> jittered = convergence_table(
       "The same on jittered Kuhn grids (vertices moved by up to h/4)", [](int n) {

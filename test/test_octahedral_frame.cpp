@@ -1,6 +1,6 @@
 // Copyright (c) 2026 CGAL Metric Frames contributors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
-// Octahedral frames (MATH.md section 5): the band-4 real SH basis and its
+// Octahedral frames (doc/math.md section 5): the band-4 real SH basis and its
 // rotation D(R), checked against an independent evaluator written here from
 // the associated Legendre functions (recurrence, not the polynomial table of
 // the header), a product quadrature on the sphere, a long-double matrix

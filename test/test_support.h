@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
 // Shared by the numerical tests: seeded random matrices, and the analytic
-// flat metric of MATH.md section 6.
+// flat metric of doc/math.md section 6.
 #ifndef CGAL_EXT_TEST_SUPPORT_H
 #define CGAL_EXT_TEST_SUPPORT_H
 
@@ -46,7 +46,7 @@ struct Random {
   }
 };
 
-/// MATH.md section 6: Phi = (X + 0.4 sin(Y+Z), Y + 0.3 sin(Z X), Z + 0.5 sin X),
+/// doc/math.md section 6: Phi = (X + 0.4 sin(Y+Z), Y + 0.3 sin(Z X), Z + 0.5 sin X),
 /// its Jacobian J, the metric g = J^T J, A = g^{1/2}, the curl of A and the
 /// polar rotation Q = J A^{-1}; the exact transport is T(a->b) = Q(b)^T Q(a).
 namespace flat_metric {

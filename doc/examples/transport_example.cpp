@@ -5,7 +5,7 @@
 //
 // The shipped input is Gmsh's unit box with a cylindrical hole of radius 0.2
 // around the vertical line x = y = 0.5. The metric is the flat metric
-// g = J^T J of the map Phi of MATH.md section 6, sampled at the vertices.
+// g = J^T J of the map Phi of doc/math.md section 6, sampled at the vertices.
 // 1. One transport, and its reversal T(b->a) = T(a->b)^T (within the tolerance).
 // 2. A segment across the hole: an error result, never a rotation.
 // 3. A threaded batch, equal bit for bit to single transports.

@@ -5,7 +5,7 @@
 
 /// \file Cell_transport_3.h
 /// The transport (rotation coefficient) `T(a->b)` along a straight segment
-/// inside one cell, where `A` is linear and `curl A` is constant (MATH.md
+/// inside one cell, where `A` is linear and `curl A` is constant (doc/math.md
 /// section 4), with adaptive error control in radians.
 
 #include <CGAL_ext/Connection_3.h>
@@ -111,7 +111,7 @@ struct Transport_options {
 /// The result of a transport along a segment.
 struct Transport_result {
   /// The transport `T(a->b)`, a rotation: a rotation field that is parallel
-  /// along the segment satisfies `R(b) = T(a->b) R(a)` (MATH.md section 4).
+  /// along the segment satisfies `R(b) = T(a->b) R(a)` (doc/math.md section 4).
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   /// The sum of the estimated errors of the accepted pieces, in radians.
   double error_estimate = 0;
@@ -196,7 +196,7 @@ Eigen::Matrix3d magnus4_step(Generator& u, double t, double h, Transport_result&
 /// \ingroup PkgCGALExtTransport
 /// Integrates `R'(t) = [u(t)]_x R(t)`, `R(0) = I`, over `t` in `[0, 1]` and
 /// returns `R(1)`: the transport along a path whose rotation generator is
-/// `u(t) = W(x(t))^T x'(t)` (MATH.md section 4).
+/// `u(t) = W(x(t))^T x'(t)` (doc/math.md section 4).
 ///
 /// - `Transport_scheme::trapezoid`: the thesis scheme. The piece `[t0, t1]`
 ///   gives `exp([(u(t0) + u(t1)) (t1 - t0) / 2]_x)`; it is compared with the
@@ -277,7 +277,7 @@ Transport_result integrate_transport(Generator&& u, const Transport_options& opt
 /// `u(t) = W(A(t), curlA)^T (b - a)` with `W` from `connection_one_form()`.
 ///
 /// For a piece inside a facet or along an edge, pass the averaged curl of
-/// MATH.md section 4. A constant metric (`A_a == A_b`, `curlA == 0`) gives
+/// doc/math.md section 4. A constant metric (`A_a == A_b`, `curlA == 0`) gives
 /// exactly the identity.
 ///
 /// \param A_a the metric square root at `a` (3x3, symmetric positive definite)

@@ -4,7 +4,7 @@
 #define CGAL_EXT_CONNECTION_3_H
 
 /// \file Connection_3.h
-/// The connection one-form `W` of a metric square root `A` (MATH.md section 3):
+/// The connection one-form `W` of a metric square root `A` (doc/math.md section 3):
 /// the solution of `M(A) vec(W) = vec(curl A)`, in closed form.
 
 #include <Eigen/Core>
@@ -25,7 +25,7 @@ inline Eigen::Matrix3d cross_product_matrix(const Eigen::Vector3d& u) {
 }
 
 /// \ingroup PkgCGALExtMetric
-/// The 9x9 matrix `M(A)` of MATH.md section 3,
+/// The 9x9 matrix `M(A)` of doc/math.md section 3,
 /// `M(A) = [[0, -[A^3]_x, [A^2]_x], [[A^3]_x, 0, -[A^1]_x], [-[A^2]_x, [A^1]_x, 0]]`,
 /// where `A^i` is column `i` of `A`. It acts on `vec(W) = [W_1; W_2; W_3]`
 /// (columns stacked). `det M(A) = -2 det(A)^3`.
@@ -49,7 +49,7 @@ inline Eigen::Matrix<double, 9, 9> connection_system_matrix(const Eigen::Matrix3
 
 /// \ingroup PkgCGALExtMetric
 /// The connection one-form `W` at a point, from the metric square root `A`
-/// and its curl there (MATH.md section 3), in closed form.
+/// and its curl there (doc/math.md section 3), in closed form.
 ///
 /// `W` is the unique solution of `M(A) vec(W) = vec(curl A)`. Column `W_k`
 /// holds the (dx, dy, dz) coefficients of the k-th of
@@ -73,7 +73,7 @@ inline Eigen::Matrix<double, 9, 9> connection_system_matrix(const Eigen::Matrix3
 /// underflow or overflow).
 ///
 /// \param A the metric square root `g^{1/2}` at the point (3x3, symmetric positive definite)
-/// \param curlA the 3x3 matrix whose column `i` is `curl` of column `i` of `A` (MATH.md section 2)
+/// \param curlA the 3x3 matrix whose column `i` is `curl` of column `i` of `A` (doc/math.md section 2)
 /// \returns `W` (3x3)
 inline Eigen::Matrix3d connection_one_form(const Eigen::Matrix3d& A, const Eigen::Matrix3d& curlA) {
   int e = 0;

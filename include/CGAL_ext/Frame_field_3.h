@@ -4,7 +4,7 @@
 #define CGAL_EXT_FRAME_FIELD_3_H
 
 /// \file Frame_field_3.h
-/// Metric-driven octahedral frame fields on a tetrahedral mesh (MATH.md
+/// Metric-driven octahedral frame fields on a tetrahedral mesh (doc/math.md
 /// section 5; Fang et al., "Metric-Driven 3D Frame Field Generation", TVCG
 /// 2023): one frame per tetrahedron, smooth after transport by the metric's
 /// connection, aligned with the boundary in the metric.
@@ -45,7 +45,7 @@ namespace CGAL_ext {
 /// **Energy.** With `s_i = D(R_i) s0` the band-4 SH vector of frame `i`
 /// (Octahedral_frame.h) and, for each interior face `f` between tetrahedra
 /// `i` and `j`, the transport `T(i->j)`,
-/// `E = sum_f w_f |s_j - D(T(i->j)) s_i|^2` (MATH.md section 5). The weight
+/// `E = sum_f w_f |s_j - D(T(i->j)) s_i|^2` (doc/math.md section 5). The weight
 /// is the face's area over the distance between the two centroids, both
 /// measured in the metric at the face centroid: `w_f = det(A) |A^{-1} n| a /
 /// |A (c_j - c_i)|` (`a`, `n` the Euclidean area and unit normal). It is the
@@ -61,7 +61,7 @@ namespace CGAL_ext {
 ///
 /// **Boundary alignment.** On a boundary face with outward unit normal `n`,
 /// the frame must have an axis along `d = A^{-1} n / |A^{-1} n|` (`A` at the
-/// face centroid): `R e_k = +-d` (MATH.md section 5). In SH terms,
+/// face centroid): `R e_k = +-d` (doc/math.md section 5). In SH terms,
 /// `D(R_d)^T s` (with `R_d e_z = d`) must have coefficients `m = -3..3` equal
 /// to `(0, 0, 0, sqrt(7/12), 0, 0, 0)`: a linear condition, used as the soft
 /// term `lambda w_b |P D(R_d)^T s - c|^2` with `w_b` the face's metric area over

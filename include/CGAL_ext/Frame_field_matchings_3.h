@@ -6,7 +6,7 @@
 /// \file Frame_field_matchings_3.h
 /// The matchings of a frame field across its interior faces: which frame
 /// vector of one tetrahedron continues as which (signed) vector of its
-/// neighbour, transports included (MATH.md section 5). The singular edges,
+/// neighbour, transports included (doc/math.md section 5). The singular edges,
 /// and CubeCover's `.perm` file, are made from them.
 
 #include <CGAL_ext/Frame_field_3.h>

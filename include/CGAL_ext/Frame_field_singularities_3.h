@@ -5,7 +5,7 @@
 
 /// \file Frame_field_singularities_3.h
 /// The singularities of an octahedral frame field: the interior mesh edges
-/// around which the frames do not come back to themselves (MATH.md section
+/// around which the frames do not come back to themselves (doc/math.md section
 /// 5), typed by their holonomy, and grouped into curves and nodes.
 
 #include <CGAL_ext/Frame_field_matchings_3.h>

@@ -6,7 +6,7 @@
 /// \file Metric_field_3.h
 /// A piecewise-linear metric field on a tetrahedral mesh: the square root
 /// `A = g^{1/2}` per vertex, linear in each cell, its constant curl per cell
-/// and the connection one-form `W` (MATH.md sections 1 to 3).
+/// and the connection one-form `W` (doc/math.md sections 1 to 3).
 
 #include <CGAL_ext/Connection_3.h>
 #include <CGAL_ext/Input_error.h>
@@ -65,7 +65,7 @@ Eigen::Vector3d to_eigen_vector(const Point_3& p) {
 /// Derivatives in a cell with vertices `p0..p3` use the edge matrix
 /// `E = [p1 - p0, p2 - p0, p3 - p0]`: the barycentric coordinates of `x`
 /// are `(1 - sum, E^{-1} (x - p0))`, so `d_k A = sum_{v=1..3} E^{-1}(v-1, k) (A_v - A_0)`.
-/// It is the `sum_v T[v][k] A_v` of MATH.md section 2, written with
+/// It is the `sum_v T[v][k] A_v` of doc/math.md section 2, written with
 /// differences so that a constant metric gives exactly zero curl.
 ///
 /// \tparam Triangulation a CGAL `Triangulation_3` (e.g. `Tet_mesh_triangulation_3<>`)
@@ -213,7 +213,7 @@ public:
   }
 
   /// The square root `A` at a point, interpolated linearly in the cell `c`
-  /// (MATH.md section 1). Outside `c` this extrapolates `c`'s linear field.
+  /// (doc/math.md section 1). Outside `c` this extrapolates `c`'s linear field.
   /// \param c a cell of the domain
   /// \param p a point, normally in `c`
   /// \returns `A(p)` (3x3, symmetric)
@@ -226,7 +226,7 @@ public:
     return A;
   }
 
-  /// The curl of `A` in the cell `c`, constant in the cell (MATH.md section 2):
+  /// The curl of `A` in the cell `c`, constant in the cell (doc/math.md section 2):
   /// column `i` is `curl` of column `i` of `A`,
   /// `(d_y A(2,i) - d_z A(1,i), d_z A(0,i) - d_x A(2,i), d_x A(1,i) - d_y A(0,i))`.
   /// Computed on first use and cached.
@@ -238,7 +238,7 @@ public:
   ///         from `precompute()`
   const Eigen::Matrix3d& curl(Cell_handle c) const { return data(c).curl; }
 
-  /// The connection one-form `W` at a point of the cell `c` (MATH.md section 3):
+  /// The connection one-form `W` at a point of the cell `c` (doc/math.md section 3):
   /// `connection_one_form(A_at(c, p), curl(c))`.
   /// \param c a cell of the domain
   /// \param p a point, normally in `c`

@@ -69,7 +69,7 @@ inline std::string power_of_two_text(double x, int k) {
 /// their inverses are all representable (1e308 I is accepted, 1e-320 I not).
 /// It works on `g` scaled by a power of two: large entries cannot overflow.
 ///
-/// \param g the 3x3 tensor; an edge `e` has length `sqrt(e^T g e)` (MATH.md section 1)
+/// \param g the 3x3 tensor; an edge `e` has length `sqrt(e^T g e)` (doc/math.md section 1)
 /// \returns an empty string if `g` is valid, else the reason, in words,
 ///          suitable as the `problem` of an `Input_error`
 inline std::string check_metric_tensor(const Eigen::Matrix3d& g) {

@@ -6,7 +6,7 @@
 /// \file Metric_transport_3.h
 /// The transport (rotation coefficient) `T(a->b)` of a piecewise-linear
 /// metric field between two arbitrary points of a tetrahedral domain, along
-/// the straight segment `[a, b]`, with error control in radians (MATH.md
+/// the straight segment `[a, b]`, with error control in radians (doc/math.md
 /// section 4), one pair at a time or a threaded batch.
 
 #include <CGAL_ext/Cell_transport_3.h>
@@ -45,7 +45,7 @@ struct Metric_transport_result {
   /// t = 0.42 and re-enters it at t = 0.71".
   std::string message;
   /// `T(a->b)`: a rotation field parallel along the segment satisfies
-  /// `R(b) = T(a->b) R(a)` (MATH.md section 4).
+  /// `R(b) = T(a->b) R(a)` (doc/math.md section 4).
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
   /// The rotation angle of `R` (`rotation_angle(R)`), in radians, in `[0, pi]`.
   double angle = 0;
@@ -81,7 +81,7 @@ struct Metric_transport_result {
 ///   continuous, so this is the trace of both incident cells' fields), and
 ///   the mean of the curls of the facet's domain cells (two, or one on the
 ///   boundary): the curl jumps across the facet, and its mean is the
-///   symmetric choice (MATH.md section 4);
+///   symmetric choice (doc/math.md section 4);
 /// - along an edge: `A` interpolated from the edge's two vertices, and the
 ///   mean of the curls of all the domain cells around the edge, each
 ///   weighted by its interior dihedral angle at the edge, so that the value
@@ -91,7 +91,7 @@ struct Metric_transport_result {
 ///
 /// **Order.** The pieces are composed left-multiplied in path order,
 /// `T(a->b) = T_k ... T_2 T_1` for pieces `1..k` from `a` to `b`, which is
-/// MATH.md section 4's `T(a->c) = T(b->c) T(a->b)`.
+/// doc/math.md section 4's `T(a->c) = T(b->c) T(a->b)`.
 ///
 /// **Tolerance.** `Transport_options::tolerance` `tol` (radians) is shared among
 /// the pieces in proportion to their parameter length: a piece
@@ -198,7 +198,7 @@ public:
       piece_opt.tolerance = opt.tolerance * h; // the share of this piece
       const Transport_result t =
           cell_transport(piece_A(piece, x0), piece_A(piece, x1), piece_curl(piece), x1 - x0, piece_opt);
-      R = t.rotation * R; // path order: the later piece acts last (MATH.md section 4)
+      R = t.rotation * R; // path order: the later piece acts last (doc/math.md section 4)
       res.error_estimate += t.error_estimate;
       res.evaluations += t.evaluations;
       res.converged = res.converged && t.converged;
@@ -245,7 +245,7 @@ public:
     });
   }
 
-  /// The curl used on a piece of positive length (MATH.md section 4): the
+  /// The curl used on a piece of positive length (doc/math.md section 4): the
   /// cell's curl; on a facet the mean of the curls of its domain cells (one
   /// or two); on an edge the mean of the curls of its domain cells, each
   /// weighted by its interior dihedral angle at the edge.

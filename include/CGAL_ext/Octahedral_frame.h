@@ -4,7 +4,7 @@
 #define CGAL_EXT_OCTAHEDRAL_FRAME_H
 
 /// \file Octahedral_frame.h
-/// The algebra of octahedral frames (MATH.md section 5): a frame is a rotation
+/// The algebra of octahedral frames (doc/math.md section 5): a frame is a rotation
 /// `R` modulo the 24-element octahedral group, represented by the 9 band-4
 /// real spherical-harmonic (SH) coefficients of the rotated octahedral
 /// function (Huang et al. 2011, Ray et al. 2016, Palmer et al. 2020).
@@ -455,7 +455,7 @@ struct Octahedral_matching {
 /// `G_{n-1} ... G_1 G_0` (multiplied on the **left** in path order) is the
 /// identity; otherwise it is conjugate to the monodromy (a quarter turn for
 /// the usual +-1/4 singular edges). With a metric, compare the transported
-/// frame: `closest_octahedral_matching(T(i->j) R_i, R_j)` (MATH.md section 5).
+/// frame: `closest_octahedral_matching(T(i->j) R_i, R_j)` (doc/math.md section 5).
 /// The product is exact (integer matrices); `octahedral_group_index()` names it.
 /// \param Ri the rotation of frame `i`
 /// \param Rj the rotation of frame `j`

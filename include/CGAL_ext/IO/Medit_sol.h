@@ -24,7 +24,7 @@ constexpr std::size_t any_vertex_count = static_cast<std::size_t>(-1);
 /// \ingroup PkgCGALExtIO
 /// Reads the metric of each vertex from an ASCII Medit `.sol` file.
 ///
-/// Expected content (MATH.md section 1):
+/// Expected content (doc/math.md section 1):
 /// \code
 /// MeshVersionFormatted 2
 /// Dimension 3
