@@ -300,8 +300,8 @@ inline Transport_result cell_transport(const Eigen::Matrix3d& A_a, const Eigen::
 /// The transport `T(a->b)` along the segment `[a, b]` inside the cell `c` of
 /// a metric field (for instance `Metric_field_3`).
 ///
-/// \tparam Metric_field a type with `A_at(c, p)` (the interpolated square
-///         root, `Eigen::Matrix3d`) and `curl(c)` (`Eigen::Matrix3d`)
+/// \tparam Metric_field a model of `MetricField_3` (only `A_at(c, p)` and
+///         `curl(c)` are used)
 /// \tparam Cell_handle the cell handle type of the field's triangulation
 /// \tparam Point_3 a point type with `x()`, `y()`, `z()`
 /// \param field the metric field

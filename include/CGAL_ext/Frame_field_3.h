@@ -94,8 +94,7 @@ namespace CGAL_ext {
 /// every sum is made of fixed blocks added in order, so the result does not
 /// depend on the number of threads.
 ///
-/// \tparam Metric_field a metric field such as `Metric_field_3<Tr>`: it
-///         provides `triangulation()`, `A_at(c, p)`, `curl(c)` and `sqrt_metric(v)`
+/// \tparam Metric_field a model of `MetricField_3`, such as `Metric_field_3<Tr>`
 /// \tparam CellIndexMap a readable property map from cell handle to a 0-based
 ///         index, negative outside the domain; the domain's indices must be
 ///         exactly `0..n-1` (the tetrahedron order of the mesh file)

@@ -4,9 +4,12 @@
 #define CGAL_EXT_FRAME_FIELD_OPTIONS_H
 
 /// \file Frame_field_options.h
-/// The options of `Frame_field_3::compute()` and the statistics it returns.
+/// The plain data of `Frame_field_3`: the options of `compute()`, the
+/// statistics it returns, and the boundary faces.
 
 #include <CGAL_ext/Cell_transport_3.h>
+
+#include <Eigen/Core>
 
 #include <cstddef>
 #include <functional>
@@ -116,6 +119,18 @@ struct Frame_field_statistics {
   /// initialisation, projection, refinement.
   double seconds_setup = 0, seconds_transports = 0, seconds_linear = 0, seconds_projection = 0,
          seconds_refinement = 0;
+};
+
+/// \ingroup PkgCGALExtFrames
+/// One boundary face of a frame field's domain: tetrahedron, local facet,
+/// Euclidean outward unit normal, the aligned direction
+/// `d = A^{-1} n / |A^{-1} n|` and the metric area.
+struct Frame_field_boundary_face {
+  std::size_t tet;           ///< tetrahedron index
+  int facet;                 ///< the facet's index in the cell (its opposite vertex)
+  Eigen::Vector3d normal;    ///< outward unit normal
+  Eigen::Vector3d direction; ///< `A^{-1} n / |A^{-1} n|`, in the frame's (rotation) space
+  double metric_area;        ///< area measured in the metric
 };
 
 } // namespace CGAL_ext

@@ -74,6 +74,8 @@ Eigen::Vector3d to_eigen_vector(const Point_3& p) {
 /// \tparam CellIndexMap a readable property map from `Cell_handle` to a signed
 ///         index, negative for cells outside the domain; default: the
 ///         tetrahedron index `c->info().index`
+///
+/// \cgalModels `MetricField_3`
 template <class Triangulation, class VertexIndexMap = Tet_mesh_vertex_index_map,
           class CellIndexMap = Tet_mesh_cell_index_map>
 class Metric_field_3 {

@@ -129,10 +129,8 @@ struct Metric_transport_result {
 /// \tparam Domain_predicate the unary predicate on `Cell_handle` that is true
 ///         for the domain cells (e.g. `Is_tet_mesh_domain_cell`); it must
 ///         agree with the field's cell index map
-/// \tparam Metric_field the metric field type, by default
-///         `Metric_field_3<Triangulation>`; it needs `triangulation()`,
-///         `A_at(c, p)`, `barycentric_coordinates(c, p)`, `sqrt_metric(v)` and
-///         `curl(c)` as in `Metric_field_3`
+/// \tparam Metric_field a model of `MetricField_3` on `Triangulation`, by
+///         default `Metric_field_3<Triangulation>`
 template <class Triangulation, class Domain_predicate, class Metric_field = Metric_field_3<Triangulation>>
 class Metric_transport_3 {
 public:

@@ -82,8 +82,8 @@ enum class Feature_vertex_kind {
 /// Everything is decided from the mesh in a fixed order, so the result does
 /// not depend on the order of the triangulation's cells in memory.
 ///
-/// \tparam Metric_field a metric field such as `Metric_field_3<Tr>`: it
-///         provides `triangulation()` and `sqrt_metric(v)`
+/// \tparam Metric_field a model of `MetricField_3`, such as `Metric_field_3<Tr>`
+///         (only `triangulation()` and `sqrt_metric(v)` are used)
 /// \tparam CellIndexMap a readable property map from cell handle to a 0-based
 ///         index, negative outside the domain
 /// \tparam VertexIndexMap a readable property map from vertex handle to its

@@ -37,18 +37,6 @@
 
 namespace CGAL_ext {
 
-/// \ingroup PkgCGALExtFrames
-/// One boundary face of a frame field's domain: tetrahedron, local facet,
-/// Euclidean outward unit normal, the aligned direction
-/// `d = A^{-1} n / |A^{-1} n|` and the metric area.
-struct Frame_field_boundary_face {
-  std::size_t tet;           ///< tetrahedron index
-  int facet;                 ///< the facet's index in the cell (its opposite vertex)
-  Eigen::Vector3d normal;    ///< outward unit normal
-  Eigen::Vector3d direction; ///< `A^{-1} n / |A^{-1} n|`, in the frame's (rotation) space
-  double metric_area;        ///< area measured in the metric
-};
-
 namespace internal {
 
 /// The discrete energy of a frame field (see the file comment). The data

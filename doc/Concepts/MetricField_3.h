@@ -1,0 +1,57 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// Documentation only (read by Doxygen, never compiled).
+
+/// \ingroup PkgCGALExtMetric
+/// \cgalConcept
+///
+/// A metric field on a CGAL 3D triangulation: what `Frame_field_3`,
+/// `Sharp_features_3`, `Metric_transport_3` and `cell_transport()` read of a
+/// metric. The metric `g` is symmetric positive definite; `A = g^{1/2}` is
+/// given per vertex and, inside each cell, as a function whose derivatives
+/// give a constant `curl A` per cell (doc/math.md sections 1 and 2). The
+/// frame field measures lengths and angles with `A`, and the transports
+/// integrate the connection of `A` and its curl.
+///
+/// `test/metric_field_archetype.h` is a model with exactly these members
+/// (and no other); the tests compile and run the frame field, the sharp
+/// features, the singular edges, the repair and the transport with it.
+///
+/// \cgalHasModel `CGAL_ext::Metric_field_3`
+class MetricField_3 {
+public:
+  /// The triangulation type, a CGAL `Triangulation_3` (for a tet mesh,
+  /// `Tet_mesh_triangulation_3<Geom_traits>`).
+  typedef unspecified_type Triangulation_3;
+  /// `Triangulation_3::Vertex_handle`.
+  typedef unspecified_type Vertex_handle;
+  /// `Triangulation_3::Cell_handle`.
+  typedef unspecified_type Cell_handle;
+  /// `Triangulation_3::Point`.
+  typedef unspecified_type Point_3;
+
+  /// The triangulation the metric lives on; it outlives the field.
+  const Triangulation_3& triangulation() const;
+
+  /// `A = g^{1/2}` at a finite vertex of the domain (symmetric positive definite).
+  /// \param v the vertex
+  Eigen::Matrix3d sqrt_metric(Vertex_handle v) const;
+
+  /// `A` at a point of a domain cell (inside it or on its boundary), the
+  /// cell's interpolation of its vertices' values.
+  /// \param c the cell
+  /// \param p the point
+  Eigen::Matrix3d A_at(Cell_handle c, const Point_3& p) const;
+
+  /// The curl of `A` in a domain cell (column `i` is the curl of column `i`
+  /// of `A`), constant in the cell.
+  /// \param c the cell
+  Eigen::Matrix3d curl(Cell_handle c) const;
+
+  /// The barycentric coordinates of a point in a cell, in the order of the
+  /// cell's vertices (summing to 1).
+  /// \param c the cell
+  /// \param p the point
+  Eigen::Vector4d barycentric_coordinates(Cell_handle c, const Point_3& p) const;
+};

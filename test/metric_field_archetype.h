@@ -1,0 +1,51 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_EXT_TEST_METRIC_FIELD_ARCHETYPE_H
+#define CGAL_EXT_TEST_METRIC_FIELD_ARCHETYPE_H
+
+// The archetype of the MetricField_3 concept (doc/Concepts/MetricField_3.h):
+// exactly the concept's types and members, nothing else, so that a
+// component needing more than the concept says fails to compile in
+// test_concepts.cpp. It is a constant metric, so its results are known.
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+namespace CGAL_ext {
+namespace testing {
+
+template <class Tr>
+class Metric_field_archetype_3 {
+public:
+  typedef Tr Triangulation_3;
+  typedef typename Tr::Vertex_handle Vertex_handle;
+  typedef typename Tr::Cell_handle Cell_handle;
+  typedef typename Tr::Point Point_3;
+
+  Metric_field_archetype_3(const Tr& tr, const Eigen::Matrix3d& A) : tr_(&tr), A_(A) {}
+  Metric_field_archetype_3(const Metric_field_archetype_3&) = delete; // the components keep it by address
+
+  const Triangulation_3& triangulation() const { return *tr_; }
+  Eigen::Matrix3d sqrt_metric(Vertex_handle) const { return A_; }
+  Eigen::Matrix3d A_at(Cell_handle, const Point_3&) const { return A_; }
+  Eigen::Matrix3d curl(Cell_handle) const { return Eigen::Matrix3d::Zero(); }
+  Eigen::Vector4d barycentric_coordinates(Cell_handle c, const Point_3& p) const {
+    Eigen::Matrix3d E;
+    const Point_3& o = c->vertex(0)->point();
+    for (int k = 0; k < 3; ++k) {
+      const Point_3& q = c->vertex(k + 1)->point();
+      E.col(k) = Eigen::Vector3d(q.x() - o.x(), q.y() - o.y(), q.z() - o.z());
+    }
+    const Eigen::Vector3d l = E.lu().solve(Eigen::Vector3d(p.x() - o.x(), p.y() - o.y(), p.z() - o.z()));
+    return Eigen::Vector4d(1 - l.sum(), l(0), l(1), l(2));
+  }
+
+private:
+  const Tr* tr_;
+  Eigen::Matrix3d A_;
+};
+
+} // namespace testing
+} // namespace CGAL_ext
+
+#endif // CGAL_EXT_TEST_METRIC_FIELD_ARCHETYPE_H
