@@ -44,6 +44,110 @@ struct Lbfgs_outcome {
   bool limit = false;  ///< whether `max_iterations` stopped it while it still made progress
 };
 
+// One pass over n elements: update(k), then the sum of value(k) on the
+// updated data (fixed blocks: deterministic).
+template <class Update, class Value>
+double fused_pass(std::size_t n, Update&& update, Value&& value) {
+  return deterministic_sum(n, [&](std::size_t first, std::size_t last) {
+    double sum = 0;
+    for (std::size_t k = first; k < last; ++k) {
+      update(k);
+      sum += value(k);
+    }
+    return sum;
+  });
+}
+
+// The (step, gradient change) pairs of L-BFGS in a ring of `memory`
+// preallocated slots, oldest first in `order`; per pair rho = 1 / (s.y) and
+// gamma = (s.y) / (y.Dinv.y).
+class Lbfgs_history {
+public:
+  Lbfgs_history(const std::vector<double>& inverse_diagonal, int memory)
+      : inverse_diagonal_(inverse_diagonal), n_(inverse_diagonal.size()), m_(std::max(1, memory)), rho_(m_),
+        gamma_of_(m_) {}
+
+  bool empty() const { return order_.empty(); }
+  void clear() { order_.clear(); }
+
+  // p = -H g by the two-loop recursion, each axpy fused with the next dot
+  // product; the initial inverse Hessian is gamma diag(inverse_diagonal),
+  // gamma from the newest pair. Returns the slope g.p.
+  double direction(const std::vector<Eigen::Vector3d>& g, std::vector<Eigen::Vector3d>& p) const {
+    const auto& S = S_;
+    const auto& Y = Y_;
+    const auto& order = order_;
+    const int h = int(order.size());
+    std::vector<double> alpha(h);
+    double d = fused_pass(n_, [&](std::size_t i) { p[i] = -g[i]; },
+                          [&](std::size_t i) { return h > 0 ? S[order[h - 1]][i].dot(p[i]) : 0.0; });
+    for (int k = h - 1; k >= 0; --k) {
+      const int o = order[k];
+      alpha[k] = rho_[o] * d;
+      const double a = alpha[k];
+      d = fused_pass(n_, [&](std::size_t i) { p[i] -= a * Y[o][i]; },
+                     [&](std::size_t i) { return k > 0 ? S[order[k - 1]][i].dot(p[i]) : 0.0; });
+    }
+    const double gamma = h > 0 ? gamma_of_[order[h - 1]] : 1.0;
+    double slope = 0;
+    d = fused_pass(n_, [&](std::size_t i) { p[i] *= gamma * inverse_diagonal_[i]; },
+                   [&](std::size_t i) { return h > 0 ? Y[order[0]][i].dot(p[i]) : g[i].dot(p[i]); });
+    if (h == 0) slope = d;
+    for (int k = 0; k < h; ++k) {
+      const int o = order[k];
+      const double a = alpha[k] - rho_[o] * d;
+      d = fused_pass(n_, [&](std::size_t i) { p[i] += a * S[o][i]; },
+                     [&](std::size_t i) { return k + 1 < h ? Y[order[k + 1]][i].dot(p[i]) : g[i].dot(p[i]); });
+      if (k + 1 == h) slope = d;
+    }
+    return slope;
+  }
+
+  // The pair of an accepted step (step p, from gradient g to g_new) goes
+  // into a free slot (or the oldest one's), kept only if the curvature s.y
+  // is positive.
+  void add(double step, const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::Vector3d>& g,
+           const std::vector<Eigen::Vector3d>& g_new) {
+    int slot;
+    if (int(S_.size()) < m_) {
+      slot = int(S_.size());
+      S_.emplace_back(n_), Y_.emplace_back(n_);
+    } else if (int(order_.size()) < m_) {
+      slot = 0;
+      while (std::find(order_.begin(), order_.end(), slot) != order_.end()) ++slot;
+    } else {
+      slot = order_.front();
+    }
+    std::vector<Eigen::Vector3d>& sk = S_[slot];
+    std::vector<Eigen::Vector3d>& yk = Y_[slot];
+    const std::array<double, 4> sums = // s.y, s.s, y.y, y.Dinv.y
+        deterministic_sums<4>(n_, [&](std::size_t first, std::size_t last) {
+          std::array<double, 4> acc{0, 0, 0, 0};
+          for (std::size_t i = first; i < last; ++i) {
+            sk[i] = step * p[i];
+            yk[i] = g_new[i] - g[i];
+            acc[0] += sk[i].dot(yk[i]), acc[1] += sk[i].squaredNorm(), acc[2] += yk[i].squaredNorm();
+            acc[3] += inverse_diagonal_[i] * yk[i].squaredNorm();
+          }
+          return acc;
+        });
+    if (int(order_.size()) == m_ && order_.front() == slot) order_.erase(order_.begin());
+    if (sums[0] > 1e-12 * std::sqrt(sums[1] * sums[2])) {
+      rho_[slot] = 1 / sums[0];
+      gamma_of_[slot] = sums[0] / sums[3];
+      order_.push_back(slot);
+    }
+  }
+
+private:
+  const std::vector<double>& inverse_diagonal_;
+  std::size_t n_;
+  int m_;
+  std::vector<std::vector<Eigen::Vector3d>> S_, Y_;
+  std::vector<int> order_;
+  std::vector<double> rho_, gamma_of_;
+};
+
 /// Minimises an energy of per-element rotations by L-BFGS with Armijo
 /// backtracking. The initial inverse Hessian is `gamma diag(inverse_diagonal)`
 /// (per-element scales, as the weights vary by orders of magnitude), `gamma`
@@ -74,111 +178,38 @@ Lbfgs_outcome lbfgs_on_rotations(const std::vector<double>& inverse_diagonal, En
   std::vector<Eigen::Vector3d> g(n), g_new(n), p(n);
   double E = energy_and_gradient(g);
   ++out.evaluations;
-  const int m = std::max(1, settings.memory);
-  // History in a ring of m preallocated slots, oldest first in `order`;
-  // per pair: rho = 1 / (s.y) and gamma = (s.y) / (y.Dinv.y).
-  std::vector<std::vector<Eigen::Vector3d>> S, Y;
-  std::vector<int> order;
-  std::vector<double> rho(m), gamma_of(m);
+  Lbfgs_history history(inverse_diagonal, settings.memory);
   int small_steps = 0;
-  // One pass over the elements: update(k), then the sum of value(k) on the
-  // updated data (fixed blocks: deterministic).
-  auto pass = [&](auto&& update, auto&& value) {
-    return deterministic_sum(n, [&](std::size_t first, std::size_t last) {
-      double sum = 0;
-      for (std::size_t k = first; k < last; ++k) {
-        update(k);
-        sum += value(k);
-      }
-      return sum;
-    });
-  };
   for (int it = 0; it < settings.max_iterations; ++it) {
     if (E <= settings.floor_energy) break;
-    // Two-loop recursion, p = -H g, each axpy fused with the next dot product.
-    const int h = int(order.size());
-    std::vector<double> alpha(h);
-    double d = pass([&](std::size_t i) { p[i] = -g[i]; },
-                    [&](std::size_t i) { return h > 0 ? S[order[h - 1]][i].dot(p[i]) : 0.0; });
-    for (int k = h - 1; k >= 0; --k) {
-      const int o = order[k];
-      alpha[k] = rho[o] * d;
-      const double a = alpha[k];
-      d = pass([&](std::size_t i) { p[i] -= a * Y[o][i]; },
-               [&](std::size_t i) { return k > 0 ? S[order[k - 1]][i].dot(p[i]) : 0.0; });
-    }
-    const double gamma = h > 0 ? gamma_of[order[h - 1]] : 1.0;
-    double slope = 0;
-    d = pass([&](std::size_t i) { p[i] *= gamma * inverse_diagonal[i]; },
-             [&](std::size_t i) { return h > 0 ? Y[order[0]][i].dot(p[i]) : g[i].dot(p[i]); });
-    if (h == 0) slope = d;
-    for (int k = 0; k < h; ++k) {
-      const int o = order[k];
-      const double a = alpha[k] - rho[o] * d;
-      d = pass([&](std::size_t i) { p[i] += a * S[o][i]; },
-               [&](std::size_t i) { return k + 1 < h ? Y[order[k + 1]][i].dot(p[i]) : g[i].dot(p[i]); });
-      if (k + 1 == h) slope = d;
-    }
+    double slope = history.direction(g, p);
     if (!(slope < 0)) { // not a descent direction: restart from the gradient
-      order.clear();
-      slope = pass([&](std::size_t i) { p[i] = -inverse_diagonal[i] * g[i]; },
-                   [&](std::size_t i) { return g[i].dot(p[i]); });
+      history.clear();
+      slope = fused_pass(n, [&](std::size_t i) { p[i] = -inverse_diagonal[i] * g[i]; },
+                         [&](std::size_t i) { return g[i].dot(p[i]); });
       if (!(slope < 0)) break; // zero gradient
     }
     double step = 1;
-    if (order.empty()) {
+    if (history.empty()) {
       double pmax = 0;
       for (std::size_t i = 0; i < n; ++i) pmax = std::max(pmax, p[i].norm());
       step = std::min(1.0, 0.1 / pmax);
     }
     double E_new = E;
     bool accepted = false;
-    for (int ls = 0; ls < 40; ++ls) {
+    for (int ls = 0; ls < 40 && !accepted; ++ls) {
+      if (ls > 0) step *= 0.5;
       move(p, step);
       E_new = energy_and_gradient(g_new);
       ++out.evaluations;
-      if (E_new <= E + 1e-4 * step * slope) {
-        accepted = true;
-        break;
-      }
-      step *= 0.5;
+      accepted = E_new <= E + 1e-4 * step * slope;
     }
     if (!accepted) {
       move(p, 0);
       break;
     }
     ++out.iterations;
-    // The new pair goes into a free slot (or the oldest one's), kept only
-    // if the curvature s.y is positive.
-    int slot;
-    if (int(S.size()) < m) {
-      slot = int(S.size());
-      S.emplace_back(n), Y.emplace_back(n);
-    } else if (int(order.size()) < m) {
-      slot = 0;
-      while (std::find(order.begin(), order.end(), slot) != order.end()) ++slot;
-    } else {
-      slot = order.front();
-    }
-    std::vector<Eigen::Vector3d>& sk = S[slot];
-    std::vector<Eigen::Vector3d>& yk = Y[slot];
-    const std::array<double, 4> sums = // s.y, s.s, y.y, y.Dinv.y
-        deterministic_sums<4>(n, [&](std::size_t first, std::size_t last) {
-          std::array<double, 4> acc{0, 0, 0, 0};
-          for (std::size_t i = first; i < last; ++i) {
-            sk[i] = step * p[i];
-            yk[i] = g_new[i] - g[i];
-            acc[0] += sk[i].dot(yk[i]), acc[1] += sk[i].squaredNorm(), acc[2] += yk[i].squaredNorm();
-            acc[3] += inverse_diagonal[i] * yk[i].squaredNorm();
-          }
-          return acc;
-        });
-    if (int(order.size()) == m && order.front() == slot) order.erase(order.begin());
-    if (sums[0] > 1e-12 * std::sqrt(sums[1] * sums[2])) {
-      rho[slot] = 1 / sums[0];
-      gamma_of[slot] = sums[0] / sums[3];
-      order.push_back(slot);
-    }
+    history.add(step, p, g, g_new);
     accept();
     std::swap(g, g_new);
     const double decrease = E - E_new;
