@@ -116,7 +116,7 @@ TEST_CASE("chamfered box: the feature edges are the prism's 15 edges, the corner
     prism_edges.push_back({k, 5 + k});
   }
   std::vector<Tr::Vertex_handle> vertex(m->mesh.vertices.size());
-  for (Tr::Vertex_handle v : m->tr.finite_vertex_handles()) vertex[get(Tet_mesh_vertex_index_map(), v)] = v;
+  for (Tr::Vertex_handle v : m->tr.finite_vertex_handles()) vertex[get(Tet_mesh_vertex_index_map<Tr>(), v)] = v;
   std::vector<double> covered(prism_edges.size(), 0);
   for (const Features::Feature_edge& e : features.feature_edges()) {
     const Eigen::Vector3d a = position(vertex[e.source]), b = position(vertex[e.target]);
@@ -274,7 +274,7 @@ TEST_CASE("cylinder: the rims are feature curves without corners, the frames fol
   const Field field(m->tr, Eigen::Matrix3d::Identity().eval());
   const Features features(field, 40);
   std::vector<Tr::Vertex_handle> vertex(m->mesh.vertices.size());
-  for (Tr::Vertex_handle v : m->tr.finite_vertex_handles()) vertex[get(Tet_mesh_vertex_index_map(), v)] = v;
+  for (Tr::Vertex_handle v : m->tr.finite_vertex_handles()) vertex[get(Tet_mesh_vertex_index_map<Tr>(), v)] = v;
   REQUIRE(!features.feature_edges().empty());
   for (const Features::Feature_edge& e : features.feature_edges()) {
     const Eigen::Vector3d a = position(vertex[e.source]), b = position(vertex[e.target]);

@@ -95,13 +95,14 @@ namespace CGAL_ext {
 /// depend on the number of threads.
 ///
 /// \tparam Metric_field a model of `MetricField_3`, such as `Metric_field_3<Tr>`
+/// \tparam VertexIndexMap a readable property map from vertex handle to its
+///         0-based index
 /// \tparam CellIndexMap a readable property map from cell handle to a 0-based
 ///         index, negative outside the domain; the domain's indices must be
 ///         exactly `0..n-1` (the tetrahedron order of the mesh file)
-/// \tparam VertexIndexMap a readable property map from vertex handle to its
-///         0-based index
-template <class Metric_field, class CellIndexMap = Tet_mesh_cell_index_map,
-          class VertexIndexMap = Tet_mesh_vertex_index_map>
+template <class Metric_field,
+          class VertexIndexMap = Tet_mesh_vertex_index_map<typename Metric_field::Triangulation_3>,
+          class CellIndexMap = Tet_mesh_cell_index_map<typename Metric_field::Triangulation_3>>
 class Frame_field_3 {
 public:
   /// The triangulation type.
@@ -118,13 +119,13 @@ public:
 
   /// Prepares the field: cells, neighbours, weights and boundary data.
   /// \param field the metric field; it and its triangulation must outlive this object
-  /// \param cim the cell index map
   /// \param vim the vertex index map
+  /// \param cim the cell index map
   /// \throws Input_error if the domain's cell indices are not `0..n-1`, or
   ///         the domain is empty
-  explicit Frame_field_3(const Metric_field& field, CellIndexMap cim = CellIndexMap(),
-                         VertexIndexMap vim = VertexIndexMap())
-      : field_(&field), cim_(cim), vim_(vim), e_(field, cim, vim, domain_cells(field, cim)) {
+  explicit Frame_field_3(const Metric_field& field, VertexIndexMap vim = VertexIndexMap(),
+                         CellIndexMap cim = CellIndexMap())
+      : field_(&field), vim_(vim), cim_(cim), e_(field, vim, cim, domain_cells(field, cim)) {
     stats_.tets = e_.size();
   }
 
@@ -336,7 +337,7 @@ public:
   }
 
 private:
-  using Energy = internal::Frame_field_energy_3<Metric_field, CellIndexMap, VertexIndexMap>;
+  using Energy = internal::Frame_field_energy_3<Metric_field, VertexIndexMap, CellIndexMap>;
 
   // The domain's cells in index order; throws if the indices are not 0..n-1.
   static std::vector<Cell_handle> domain_cells(const Metric_field& field, CellIndexMap cim) {
@@ -648,8 +649,8 @@ private:
   }
 
   const Metric_field* field_;
-  CellIndexMap cim_;
   VertexIndexMap vim_;
+  CellIndexMap cim_;
   Frame_field_options opt_;
   Frame_field_statistics stats_;
   Energy e_;

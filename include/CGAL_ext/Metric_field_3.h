@@ -76,8 +76,8 @@ Eigen::Vector3d to_eigen_vector(const Point_3& p) {
 ///         tetrahedron index `c->info().index`
 ///
 /// \cgalModels `MetricField_3`
-template <class Triangulation, class VertexIndexMap = Tet_mesh_vertex_index_map,
-          class CellIndexMap = Tet_mesh_cell_index_map>
+template <class Triangulation, class VertexIndexMap = Tet_mesh_vertex_index_map<Triangulation>,
+          class CellIndexMap = Tet_mesh_cell_index_map<Triangulation>>
 class Metric_field_3 {
 public:
   /// The triangulation type.

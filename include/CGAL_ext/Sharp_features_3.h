@@ -84,12 +84,13 @@ enum class Feature_vertex_kind {
 ///
 /// \tparam Metric_field a model of `MetricField_3`, such as `Metric_field_3<Tr>`
 ///         (only `triangulation()` and `sqrt_metric(v)` are used)
-/// \tparam CellIndexMap a readable property map from cell handle to a 0-based
-///         index, negative outside the domain
 /// \tparam VertexIndexMap a readable property map from vertex handle to its
 ///         0-based index
-template <class Metric_field, class CellIndexMap = Tet_mesh_cell_index_map,
-          class VertexIndexMap = Tet_mesh_vertex_index_map>
+/// \tparam CellIndexMap a readable property map from cell handle to a 0-based
+///         index, negative outside the domain
+template <class Metric_field,
+          class VertexIndexMap = Tet_mesh_vertex_index_map<typename Metric_field::Triangulation_3>,
+          class CellIndexMap = Tet_mesh_cell_index_map<typename Metric_field::Triangulation_3>>
 class Sharp_features_3 {
 public:
   /// The triangulation type.
@@ -111,11 +112,11 @@ public:
   /// \param field the metric field
   /// \param feature_angle_deg the threshold in degrees, in `[0, 180]`; 180 finds only the edges where
   ///        parts of the domain meet (other than two boundary facets)
-  /// \param cim the cell index map (the domain: non-negative indices)
   /// \param vim the vertex index map
+  /// \param cim the cell index map (the domain: non-negative indices)
   /// \throws std::invalid_argument if the angle is not in `[0, 180]`
-  Sharp_features_3(const Metric_field& field, double feature_angle_deg, CellIndexMap cim = CellIndexMap(),
-                   VertexIndexMap vim = VertexIndexMap())
+  Sharp_features_3(const Metric_field& field, double feature_angle_deg, VertexIndexMap vim = VertexIndexMap(),
+                   CellIndexMap cim = CellIndexMap())
       : angle_deg_(feature_angle_deg) {
     if (!(feature_angle_deg >= 0 && feature_angle_deg <= 180))
       throw std::invalid_argument("the feature angle must be in [0, 180] degrees (got " +

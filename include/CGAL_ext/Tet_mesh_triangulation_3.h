@@ -91,28 +91,31 @@ private:
 };
 
 /// \ingroup PkgCGALExtMesh
-/// Read-only property map from a vertex handle to its 0-based file index.
+/// Read-only property map from a vertex handle to its 0-based file index
+/// (`v->info()`).
+/// \tparam Triangulation a `Tet_mesh_triangulation_3`
+template <class Triangulation>
 struct Tet_mesh_vertex_index_map {
-  using key_type = void*; ///< placeholder; `get` is a template
-  using value_type = std::size_t; ///< the index type
-  using reference = std::size_t; ///< returned by value
-  using category = boost::readable_property_map_tag; ///< read-only
+  using key_type = typename Triangulation::Vertex_handle; ///< the vertex handle
+  using value_type = std::size_t;                          ///< the index type
+  using reference = std::size_t;                           ///< returned by value
+  using category = boost::readable_property_map_tag;       ///< read-only
   /// \param v the vertex
-  template <class Vertex_handle>
-  friend std::size_t get(const Tet_mesh_vertex_index_map&, const Vertex_handle& v) { return v->info(); }
+  friend std::size_t get(const Tet_mesh_vertex_index_map&, const key_type& v) { return v->info(); }
 };
 
 /// \ingroup PkgCGALExtMesh
 /// Read-only property map from a cell handle to its 0-based tetrahedron index
 /// (-1 outside the domain).
+/// \tparam Triangulation a `Tet_mesh_triangulation_3`
+template <class Triangulation>
 struct Tet_mesh_cell_index_map {
-  using key_type = void*; ///< placeholder; `get` is a template
-  using value_type = std::int64_t; ///< the index type
-  using reference = std::int64_t; ///< returned by value
-  using category = boost::readable_property_map_tag; ///< read-only
+  using key_type = typename Triangulation::Cell_handle; ///< the cell handle
+  using value_type = std::int64_t;                       ///< the index type
+  using reference = std::int64_t;                        ///< returned by value
+  using category = boost::readable_property_map_tag;     ///< read-only
   /// \param c the cell
-  template <class Cell_handle>
-  friend std::int64_t get(const Tet_mesh_cell_index_map&, const Cell_handle& c) { return c->info().index; }
+  friend std::int64_t get(const Tet_mesh_cell_index_map&, const key_type& c) { return c->info().index; }
 };
 
 } // namespace CGAL_ext

@@ -42,9 +42,9 @@ namespace internal {
 /// The discrete energy of a frame field (see the file comment). The data
 /// are public: `Frame_field_3` and the coarse level read them directly.
 /// \tparam Metric_field as in `Frame_field_3`
-/// \tparam CellIndexMap as in `Frame_field_3`
 /// \tparam VertexIndexMap as in `Frame_field_3`
-template <class Metric_field, class CellIndexMap, class VertexIndexMap>
+/// \tparam CellIndexMap as in `Frame_field_3`
+template <class Metric_field, class VertexIndexMap, class CellIndexMap>
 class Frame_field_energy_3 {
 public:
   using Triangulation = typename Metric_field::Triangulation_3;
@@ -70,12 +70,12 @@ public:
   };
 
   /// \param field the metric field (kept by address)
-  /// \param cim the cell index map
   /// \param vim the vertex index map
+  /// \param cim the cell index map
   /// \param domain_cells the domain's cells, in index order
-  Frame_field_energy_3(const Metric_field& field, CellIndexMap cim, VertexIndexMap vim,
+  Frame_field_energy_3(const Metric_field& field, VertexIndexMap vim, CellIndexMap cim,
                        std::vector<Cell_handle> domain_cells)
-      : cells(std::move(domain_cells)), field_(&field), cim_(cim), vim_(vim) {}
+      : cells(std::move(domain_cells)), field_(&field), vim_(vim), cim_(cim) {}
 
   /// The number of tetrahedra.
   std::size_t size() const { return cells.size(); }
@@ -311,8 +311,8 @@ private:
     boundary.clear();
     constraints.clear();
     stats.interior_faces = stats.boundary_faces = stats.hard_one_axis = stats.hard_two_axes = 0;
-    const Sharp_features_3<Metric_field, CellIndexMap, VertexIndexMap> features(*field_, opt.feature_angle_deg, cim_,
-                                                                               vim_);
+    const Sharp_features_3<Metric_field, VertexIndexMap, CellIndexMap> features(*field_, opt.feature_angle_deg, vim_,
+                                                                               cim_);
     stats.feature_edges = features.feature_edges().size();
     stats.feature_curve_vertices = features.number_of_curve_vertices();
     stats.feature_corners = features.number_of_corners();
@@ -514,8 +514,8 @@ private:
   }
 
   const Metric_field* field_;
-  CellIndexMap cim_;
   VertexIndexMap vim_;
+  CellIndexMap cim_;
 };
 
 } // namespace internal
