@@ -524,16 +524,24 @@ TEST_CASE("segment walk: hints, point locator, concurrent use of one walker", "[
   std::thread t1(run, std::ref(a), 0), t2(run, std::ref(b), 1);
   t1.join();
   t2.join();
+  // The hint changes neither the simplices nor their order. It can change
+  // the last bits of a parameter, as the walk may reach the first cell by
+  // another path (a location from the hint or from the grid, the cell array
+  // or the generic traversal), whose certified crossing formulas differ
+  // (found under Clang: one segment of 400, t = 2/15 as 0.13333333333333336
+  // and 0.1333333333333333). Each is within walk_crossing_tolerance of the
+  // exact value, so two differ by at most twice that.
   std::size_t same = 0;
   for (std::size_t i = 0; i < segs.size(); ++i) {
     bool eq = a[i].size() == b[i].size();
     for (std::size_t k = 0; eq && k < a[i].size(); ++k)
-      eq = a[i][k].dimension == b[i][k].dimension && vset(a[i][k]) == vset(b[i][k]) && a[i][k].t_in == b[i][k].t_in &&
-           a[i][k].t_out == b[i][k].t_out;
+      eq = a[i][k].dimension == b[i][k].dimension && vset(a[i][k]) == vset(b[i][k]) &&
+           std::abs(a[i][k].t_in - b[i][k].t_in) <= 2 * internal::walk_crossing_tolerance &&
+           std::abs(a[i][k].t_out - b[i][k].t_out) <= 2 * internal::walk_crossing_tolerance;
     same += eq;
     if (i % 20 == 0) check_segment(tr, walk, segs[i].first, segs[i].second);
   }
-  CHECK(same == segs.size()); // the hint changes nothing but the speed
+  CHECK(same == segs.size());
 
   const Point_locator_3<Mesh_tr, Is_tet_mesh_domain_cell> locate(tr, Is_tet_mesh_domain_cell());
   CHECK(locate(Mesh_tr::Point(0, 0, 0)).dimension == 0);
