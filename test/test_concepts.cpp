@@ -60,7 +60,7 @@ TEST_CASE("MetricField_3: its archetype drives the frame field, singularities, r
   const Metric_transport_result inside = transport(Tr::Point(0.1, 0.1, 0.1), Tr::Point(0.9, 0.2, 0.45));
   INFO(inside.message);
   REQUIRE(inside.ok);
-  CHECK(inside.R.isApprox(Eigen::Matrix3d::Identity(), 1e-14));
+  CHECK(inside.rotation.isApprox(Eigen::Matrix3d::Identity(), 1e-14));
   const Metric_transport_result across = transport(Tr::Point(0.7, 0.3, 0.4), Tr::Point(0.9, 0.7, 0.4));
   CHECK_FALSE(across.ok);
   const Tr::Cell_handle c = ff.cell(0);

@@ -192,7 +192,7 @@ TEST_CASE("a constant metric gives exactly the identity on every segment", "[met
         if (!r.ok) continue;
         ++inside;
         INFO(m.name << " " << seg.kind);
-        CHECK(r.R == M3::Identity());
+        CHECK(r.rotation == M3::Identity());
         CHECK(r.angle == 0);
         CHECK(r.error_estimate == 0);
       }
@@ -233,11 +233,11 @@ TEST_CASE("pieces compose left-multiplied in path order: one cell split in two h
     REQUIRE(ac.ok);
     REQUIRE(ac.pieces == 1);
     const M3 cell = cell_transport(*s.field, c, point(a), point(cc), opt).rotation;
-    CHECK(distance(ac.R, cell) <= 2 * opt.tolerance);
-    CHECK(distance(bc.R * ab.R, ac.R) <= 3 * opt.tolerance);
-    if ((ab.R * bc.R - bc.R * ab.R).norm() > 1e-6) {
+    CHECK(distance(ac.rotation, cell) <= 2 * opt.tolerance);
+    CHECK(distance(bc.rotation * ab.rotation, ac.rotation) <= 3 * opt.tolerance);
+    if ((ab.rotation * bc.rotation - bc.rotation * ab.rotation).norm() > 1e-6) {
       ++non_commuting;
-      CHECK(distance(ab.R * bc.R, ac.R) > 100 * opt.tolerance);
+      CHECK(distance(ab.rotation * bc.rotation, ac.rotation) > 100 * opt.tolerance);
     }
   }
   CHECK(non_commuting > 20);
@@ -263,12 +263,12 @@ TEST_CASE("reversal and composition hold within the tolerance", "[metric_transpo
       REQUIRE(ca.ok);
       REQUIRE(ab.ok);
       REQUIRE(bc.ok);
-      CHECK(distance(ca.R, ac.R.transpose()) <= 2 * opt.tolerance);
-      CHECK(distance(bc.R * ab.R, ac.R) <= 3 * opt.tolerance);
+      CHECK(distance(ca.rotation, ac.rotation.transpose()) <= 2 * opt.tolerance);
+      CHECK(distance(bc.rotation * ab.rotation, ac.rotation) <= 3 * opt.tolerance);
       // The other order is not the composition (doc/math.md section 4) unless the
       // rotations commute: this is what makes the check above meaningful.
-      if (ab.angle > 1e-3 && bc.angle > 1e-3 && (ab.R * bc.R - bc.R * ab.R).norm() > 1e-6) {
-        CHECK(distance(ab.R * bc.R, ac.R) > 10 * opt.tolerance);
+      if (ab.angle > 1e-3 && bc.angle > 1e-3 && (ab.rotation * bc.rotation - bc.rotation * ab.rotation).norm() > 1e-6) {
+        CHECK(distance(ab.rotation * bc.rotation, ac.rotation) > 10 * opt.tolerance);
         ++multi;
       }
       ++checked;
@@ -314,10 +314,10 @@ std::size_t compare_with_reference(const Test_mesh& m, const std::vector<Test_se
         REQUIRE(r.ok == inside);
         if (!inside) {
           CHECK(!r.message.empty());
-          CHECK(r.R == M3::Identity());
+          CHECK(r.rotation == M3::Identity());
           continue;
         }
-        const double err = distance(r.R, ref);
+        const double err = distance(r.rotation, ref);
         INFO("scheme " << int(scheme) << " tol " << tol << " error " << err << " estimate " << r.error_estimate);
         CHECK(err <= tol);
         CHECK(r.error_estimate <= tol);
@@ -379,7 +379,7 @@ TEST_CASE("leaving a non-convex domain, or starting outside, is an error, never 
   CHECK(!across.ok);
   CHECK(across.message == "the segment leaves the domain at t = 0.428571 and re-enters it at t = 0.571429");
   CHECK(across.exit_t == Approx(3.0 / 7).epsilon(1e-14));
-  CHECK(across.R == M3::Identity());
+  CHECK(across.rotation == M3::Identity());
   CHECK(across.evaluations == 0);
   const auto from_outside = transport(Point(20, 20, 5), Point(6, 6, 5));
   CHECK(!from_outside.ok);
@@ -447,8 +447,8 @@ TEST_CASE("the batch is bit-identical for 1 and 2 threads and to single transpor
       CHECK(one[i].ok == single.ok);
       CHECK(one[i].message == single.message);
       for (int k = 0; k < 9; ++k) { // exact equality of all 9 entries
-        CHECK(one[i].R.data()[k] == two[i].R.data()[k]);
-        CHECK(one[i].R.data()[k] == single.R.data()[k]);
+        CHECK(one[i].rotation.data()[k] == two[i].rotation.data()[k]);
+        CHECK(one[i].rotation.data()[k] == single.rotation.data()[k]);
       }
       CHECK(one[i].evaluations == two[i].evaluations);
       CHECK(one[i].evaluations == single.evaluations);
@@ -506,7 +506,7 @@ std::vector<double> convergence_table(const char* title, Make_mesh make_mesh) {
       REQUIRE(r.ok);
       CHECK(r.converged);
       const M3 exact = flat::polar_rotation(b).transpose() * flat::polar_rotation(a);
-      const double e = distance(r.R, exact);
+      const double e = distance(r.rotation, exact);
       std::printf(" %11.3e", e);
       worst = std::max(worst, e);
     }

@@ -57,9 +57,9 @@ int main(int argc, char** argv) {
   const Point a(0.1, 0.1, 0.1), b(0.9, 0.2, 0.8);
   const CGAL_ext::Metric_transport_result ab = transport(a, b, opt), ba = transport(b, a, opt);
   if (!ab.ok || !ba.ok) return 1;
-  std::cout << "T(a->b) =\n" << ab.R << "\nangle " << ab.angle << " rad, " << ab.pieces << " pieces, "
+  std::cout << "T(a->b) =\n" << ab.rotation << "\nangle " << ab.angle << " rad, " << ab.pieces << " pieces, "
             << ab.evaluations << " W evaluations\n";
-  const double reversal = CGAL_ext::rotation_angle(ba.R * ab.R); // T(b->a) T(a->b) = I
+  const double reversal = CGAL_ext::rotation_angle(ba.rotation * ab.rotation); // T(b->a) T(a->b) = I
   std::cout << "|T(b->a) T(a->b) - I| = " << reversal << " rad\n";
 
   // 2. Across the hole: no rotation, a reason.
@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
   std::vector<std::pair<Point, Point>> pairs = {{a, b}, {b, a}, {Point(0.1, 0.1, 0.5), Point(0.9, 0.1, 0.5)}};
   std::vector<CGAL_ext::Metric_transport_result> out;
   transport.transport_batch(pairs, opt, out);
-  const bool same = out[0].R == ab.R && out[1].R == ba.R;
+  const bool same = out[0].rotation == ab.rotation && out[1].rotation == ba.rotation;
   std::cout << "batch of " << out.size() << ": " << (same ? "equal to single calls" : "DIFFERENT") << "\n";
 
   return reversal <= 2 * opt.tolerance && !across.ok && same && ab.angle > 1e-3 ? 0 : 1;

@@ -38,7 +38,7 @@ namespace CGAL_ext {
 /// why there is none.
 struct Metric_transport_result {
   /// False if a part of the segment lies outside the domain or a coordinate
-  /// is not finite; `message` then says why, and `R` is the identity, not a
+  /// is not finite; `message` then says why, and `rotation` is the identity, not a
   /// guess.
   bool ok = true;
   /// Empty if `ok`; else the reason, e.g. "the segment leaves the domain at
@@ -46,8 +46,8 @@ struct Metric_transport_result {
   std::string message;
   /// `T(a->b)`: a rotation field parallel along the segment satisfies
   /// `R(b) = T(a->b) R(a)` (doc/math.md section 4).
-  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  /// The rotation angle of `R` (`rotation_angle(R)`), in radians, in `[0, pi]`.
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  /// The rotation angle of `rotation` (`rotation_angle(rotation)`), in radians, in `[0, pi]`.
   double angle = 0;
   /// The number of evaluations of the connection `W` (each with the piece's
   /// curl), summed over the pieces: the measure of the cost.
@@ -99,12 +99,12 @@ struct Metric_transport_result {
 /// inside it each accepted step of `cell_transport()` has an error estimate
 /// at most its share again. Since the geodesic distance of SO(3) is
 /// bi-invariant, the error of a product of rotations is at most the sum of
-/// the errors of its factors; so the returned `R` is within the sum of the
+/// the errors of its factors; so the returned `rotation` is within the sum of the
 /// step errors, estimated at most `tol` in total (`error_estimate`), of the
 /// exact transport of the piecewise-linear field defined above (plus rounding,
 /// about 1e-15 per piece). The step estimates are asymptotic (the difference
 /// between one step and two half steps), not rigorous bounds; the tests
-/// check `||R - exact|| <= tol` against an independent integration for tol
+/// check `||rotation - exact|| <= tol` against an independent integration for tol
 /// in {1e-4, 1e-6, 1e-8}. The piece boundaries are the walk's parameters in
 /// double (a few ulps of relative error), far below any usable tolerance.
 ///
@@ -204,8 +204,8 @@ public:
     }
     // A product of many rotations drifts from SO(3) by rounding; one piece is
     // already re-orthonormalized by cell_transport(), and the identity stays exact.
-    res.R = res.pieces > 1 ? internal::reorthonormalized(R) : R;
-    res.angle = rotation_angle(res.R);
+    res.rotation = res.pieces > 1 ? internal::reorthonormalized(R) : R;
+    res.angle = rotation_angle(res.rotation);
     return res;
   }
 

@@ -95,7 +95,7 @@ int command_transport(const std::vector<std::string>& args) {
       char buf[64];
       line = "{\"pair\": " + std::to_string(i) + ", \"R\": [";
       for (int k = 0; k < 9; ++k) {
-        std::snprintf(buf, sizeof buf, "%s%.17g", k ? ", " : "", r.R(k / 3, k % 3));
+        std::snprintf(buf, sizeof buf, "%s%.17g", k ? ", " : "", r.rotation(k / 3, k % 3));
         line += buf;
       }
       std::snprintf(buf, sizeof buf, "], \"angle\": %.17g, \"evaluations\": %zu", r.angle, r.evaluations);

@@ -140,8 +140,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (const Point& end : {b, far}) {
       const CGAL_ext::Metric_transport_result r = transport(a, end, topt);
       if (r.ok)
-        check(r.R.allFinite() && (r.R.transpose() * r.R - Eigen::Matrix3d::Identity()).norm() < 1e-9 &&
-                  r.R.determinant() > 0,
+        check(r.rotation.allFinite() && (r.rotation.transpose() * r.rotation - Eigen::Matrix3d::Identity()).norm() < 1e-9 &&
+                  r.rotation.determinant() > 0,
               "a transport is not a rotation");
       else
         check(!r.message.empty(), "a failed transport without a reason");
