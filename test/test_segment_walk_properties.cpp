@@ -190,7 +190,7 @@ void check_segment(const Tr& tr, const Walk& walk, const typename Tr::Point& q, 
   if (out) *out = full;
 }
 
-Mesh_tr build(const Walk_test_mesh& m) {
+Mesh_tr build(const Test_mesh& m) {
   Mesh_tr tr;
   build_triangulation_from_tets(m.points, m.tets, {}, tr);
   return tr;
@@ -216,7 +216,7 @@ TEST_CASE("segment walk: errors", "[segment_walk]") {
     CHECK(std::string(e.what()).find("dimension 2") != std::string::npos);
   }
 
-  const Mesh_tr tr = build(make_kuhn_grid(1, 1, 1, [](int, int, int) { return true; }));
+  const Mesh_tr tr = build(kuhn_grid(1, 1, 1, 1.0));
   const Mesh_walk walk(tr, Is_tet_mesh_domain_cell());
   std::vector<Segment_walk_piece_3<Mesh_tr>> out;
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
@@ -226,7 +226,7 @@ TEST_CASE("segment walk: errors", "[segment_walk]") {
 }
 
 TEST_CASE("segment walk: q == p gives exactly one piece", "[segment_walk]") {
-  const Mesh_tr tr = build(make_kuhn_grid(2, 2, 2, [](int i, int j, int k) { return !(i == 1 && j == 1 && k == 1); }, 12.0));
+  const Mesh_tr tr = build(kuhn_grid(2, 2, 2, 12.0, [](int i, int j, int k) { return !(i == 1 && j == 1 && k == 1); }));
   const Mesh_walk walk(tr, Is_tet_mesh_domain_cell());
   struct Case { double x, y, z; int dim; };
   const Case cases[] = {
@@ -251,7 +251,7 @@ TEST_CASE("segment walk: q == p gives exactly one piece", "[segment_walk]") {
 }
 
 TEST_CASE("segment walk: a single cube, hand-checked sequences", "[segment_walk]") {
-  const Mesh_tr tr = build(make_kuhn_grid(1, 1, 1, [](int, int, int) { return true; }));
+  const Mesh_tr tr = build(kuhn_grid(1, 1, 1, 1.0));
   const Mesh_walk walk(tr, Is_tet_mesh_domain_cell());
   std::vector<Segment_walk_piece_3<Mesh_tr>> w;
   // Along the main diagonal, an edge of all 6 tets, from outside to outside.
@@ -291,7 +291,7 @@ TEST_CASE("segment walk: a single cube, hand-checked sequences", "[segment_walk]
 }
 
 TEST_CASE("segment walk: L-shape, the segment leaves and re-enters", "[segment_walk]") {
-  const Mesh_tr tr = build(make_kuhn_grid(2, 2, 1, [](int i, int j, int) { return !(i == 1 && j == 1); }));
+  const Mesh_tr tr = build(kuhn_grid(2, 2, 1, 1.0, [](int i, int j, int) { return !(i == 1 && j == 1); }));
   const Mesh_walk walk(tr, Is_tet_mesh_domain_cell());
   std::vector<Segment_walk_piece_3<Mesh_tr>> w;
   check_segment(tr, walk, Mesh_tr::Point(0.5, 1.75, 0.5), Mesh_tr::Point(1.75, 0.5, 0.5), true, &w);
@@ -319,7 +319,7 @@ TEST_CASE("segment walk: grid with a tunnel, several gaps", "[segment_walk]") {
   // 5 x 3 x 3 cubes; the middle column (j = 1, k = 1) is removed for 1 <= i <= 3,
   // and the slab i = 2 keeps only its border ring: the tunnel crosses it.
   const auto keep = [](int i, int j, int k) { return !(j == 1 && k == 1 && i >= 1 && i <= 3); };
-  const Mesh_tr tr = build(make_kuhn_grid(5, 3, 3, keep));
+  const Mesh_tr tr = build(kuhn_grid(5, 3, 3, 1.0, keep));
   const Mesh_walk walk(tr, Is_tet_mesh_domain_cell());
   std::vector<Segment_walk_piece_3<Mesh_tr>> w;
   // Across the tunnel, perpendicular to it.
@@ -338,7 +338,7 @@ TEST_CASE("segment walk: grid with a tunnel, several gaps", "[segment_walk]") {
 
 TEST_CASE("segment walk: components touching along an edge and at a vertex", "[segment_walk]") {
   {
-    const Mesh_tr tr = build(make_kuhn_grid(2, 2, 1, [](int i, int j, int) { return i == j; }));
+    const Mesh_tr tr = build(kuhn_grid(2, 2, 1, 1.0, [](int i, int j, int) { return i == j; }));
     const Mesh_walk walk(tr, Is_tet_mesh_domain_cell());
     std::vector<Segment_walk_piece_3<Mesh_tr>> w;
     check_segment(tr, walk, Mesh_tr::Point(0.5, 0.5, 0.2), Mesh_tr::Point(1.5, 1.5, 0.8), true, &w);
@@ -349,7 +349,7 @@ TEST_CASE("segment walk: components touching along an edge and at a vertex", "[s
     CHECK(w[1].dimension == 1);
   }
   {
-    const Mesh_tr tr = build(make_kuhn_grid(2, 2, 2, [](int i, int j, int k) { return i == j && j == k; }));
+    const Mesh_tr tr = build(kuhn_grid(2, 2, 2, 1.0, [](int i, int j, int k) { return i == j && j == k; }));
     const Mesh_walk walk(tr, Is_tet_mesh_domain_cell());
     std::vector<Segment_walk_piece_3<Mesh_tr>> w;
     // Along the main diagonal through the touching vertex: edge, vertex, edge.
@@ -388,7 +388,7 @@ TEST_CASE("segment walk: thousands of exactly degenerate segments on Kuhn grids"
     std::vector<char> kept(n * n * n);
     for (auto& k : kept) k = mesh == 0 ? 1 : (u01(rng) < 0.7);
     kept[0] = 1;
-    const Mesh_tr tr = build(make_kuhn_grid(n, n, n, [&](int i, int j, int k) { return kept[(i * n + j) * n + k] != 0; }, s));
+    const Mesh_tr tr = build(kuhn_grid(n, n, n, s, [&](int i, int j, int k) { return kept[(i * n + j) * n + k] != 0; }));
     const Mesh_walk walk(tr, Is_tet_mesh_domain_cell());
     // Special points: vertices, edge midpoints, facet and cell centroids of the
     // mesh simplices, and integer points inside and around the grid.
@@ -504,7 +504,7 @@ TEST_CASE("segment walk: hints, point locator, concurrent use of one walker", "[
   // A tunnel grid: the lazy structures (boundary AABB tree, vertex stars,
   // location grid) are built on first use, here by two threads at once.
   const auto keep = [](int i, int j, int k) { return !(j == 1 && k == 1 && i >= 1 && i <= 2) && !(i == 0 && j == 2); };
-  const Mesh_tr tr = build(make_kuhn_grid(4, 3, 3, keep, 12.0));
+  const Mesh_tr tr = build(kuhn_grid(4, 3, 3, 12.0, keep));
   const Mesh_walk walk(tr, Is_tet_mesh_domain_cell());
   std::vector<Mesh_tr::Cell_handle> cells;
   for (auto c : tr.finite_cell_handles()) cells.push_back(c);
@@ -744,7 +744,7 @@ TEST_CASE("cell array of the walk: handle index and adjacency copy", "[segment_w
   CHECK(a.records.size() == n_domain);
   CHECK(check_facet_maps(a) > 3 * n_domain);
   // The same on a mesh built from a tet list (re-oriented tets, grid with a tunnel).
-  const Mesh_tr mt = build(make_kuhn_grid(4, 3, 3, [](int i, int j, int) { return !(i == 1 && j == 1); }));
+  const Mesh_tr mt = build(kuhn_grid(4, 3, 3, 1.0, [](int i, int j, int) { return !(i == 1 && j == 1); }));
   const internal::Walk_cell_array_3<Mesh_tr> am(mt, Is_tet_mesh_domain_cell());
   REQUIRE(am.valid());
   CHECK(check_facet_maps(am) > 2 * am.records.size());
@@ -828,7 +828,7 @@ TEST_CASE("segment walk: tiny segments keep their parameters", "[segment_walk]")
   // from a far vertex a would lose q's offset entirely. The facets around the diagonal and the cube's faces at that
   // corner are planes through the origin, so scaling about it changes
   // neither the simplices met nor their parameters.
-  const Mesh_tr tr = build(make_kuhn_grid(1, 1, 1, [](int, int, int) { return true; }));
+  const Mesh_tr tr = build(kuhn_grid(1, 1, 1, 1.0));
   const Mesh_walk walk(tr, Is_tet_mesh_domain_cell());
   auto run = [&](double s, bool fast) {
     const Mesh_tr::Point q(s * 11.0, s * 9.1, s * 10.35), p(s * 8.9, s * 10.8, s * 9.75);

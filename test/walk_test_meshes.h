@@ -3,15 +3,19 @@
 #ifndef CGAL_EXT_TEST_WALK_TEST_MESHES_H
 #define CGAL_EXT_TEST_WALK_TEST_MESHES_H
 
-// Shared by the segment walk tests: Kuhn grids with cubes left out
-// (non-convex domains, tunnels, cubes touching along an edge or at a
-// vertex) and the bit-for-bit comparison of two walks' pieces.
+// Shared by the segment walk tests: the test mesh type, Kuhn grids with
+// cubes left out (non-convex domains, tunnels, cubes touching along an edge
+// or at a vertex) and the bit-for-bit comparison of two walks' pieces. The
+// degenerate meshes of reference/degenerate_test_meshes.h build on these.
 
 #include <CGAL_ext/make_kuhn_grid.h>
 
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <functional>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace CGAL_ext {
@@ -29,19 +33,23 @@ bool identical_pieces(const std::vector<Piece>& a, const std::vector<Piece>& b) 
   return true;
 }
 
-/// Points and tetrahedra (0-based vertex indices) of a tetrahedral mesh.
-struct Walk_test_mesh {
+/// Points and tetrahedra of a tetrahedral mesh, with a name for messages.
+struct Test_mesh {
+  std::string name;
   std::vector<std::array<double, 3>> points;
-  std::vector<std::array<std::size_t, 4>> tets;
+  std::vector<std::array<std::size_t, 4>> tets; // 0-based, positively oriented
 };
 
-/// The Kuhn grid of nx * ny * nz cubes of side `scale`, keeping the cubes
-/// (i, j, k) for which keep(i, j, k) is true (`CGAL_ext::make_kuhn_grid()`).
-/// \param keep callable (int, int, int) -> bool
-template <class Keep>
-Walk_test_mesh make_kuhn_grid(int nx, int ny, int nz, Keep keep, double scale = 1.0) {
-  IO::Medit_mesh g = CGAL_ext::make_kuhn_grid({nx, ny, nz}, scale, {0, 0, 0}, keep);
-  return Walk_test_mesh{std::move(g.vertices), std::move(g.tetrahedra)};
+/// Kuhn/Freudenthal grid of nx*ny*nz cubes of side `scale`
+/// (`make_kuhn_grid()`), with a name for messages.
+inline Test_mesh kuhn_grid(int nx, int ny, int nz, double scale = 6,
+                           std::function<bool(int, int, int)> keep = nullptr, std::string name = "") {
+  Test_mesh m;
+  m.name = name.empty() ? "kuhn_" + std::to_string(nx) + "x" + std::to_string(ny) + "x" + std::to_string(nz) : name;
+  IO::Medit_mesh g = make_kuhn_grid({nx, ny, nz}, scale, {0, 0, 0}, keep);
+  m.points = std::move(g.vertices);
+  m.tets = std::move(g.tetrahedra);
+  return m;
 }
 
 } // namespace testing

@@ -12,8 +12,9 @@
 // centroids, cell centroids) and the points built from them are exact in
 // double: grids are scaled by 6, and jitter is a multiple of 3/16.
 
+#include "../walk_test_meshes.h"
+
 #include <CGAL_ext/IO/Medit_mesh.h>
-#include <CGAL_ext/make_kuhn_grid.h>
 
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -34,12 +35,6 @@
 
 namespace CGAL_ext {
 namespace testing {
-
-struct Test_mesh {
-  std::string name;
-  std::vector<std::array<double, 3>> points;
-  std::vector<std::array<std::size_t, 4>> tets; // 0-based, positively oriented
-};
 
 struct Test_segment {
   std::array<double, 3> q, p;
@@ -72,18 +67,6 @@ inline void orient_positively(Test_mesh& m) {
 }
 
 } // namespace internal
-
-/// Kuhn/Freudenthal grid of nx*ny*nz cubes of side `scale`
-/// (`make_kuhn_grid()`), with a name for messages.
-inline Test_mesh kuhn_grid(int nx, int ny, int nz, double scale = 6,
-                           std::function<bool(int, int, int)> keep = nullptr, std::string name = "") {
-  Test_mesh m;
-  m.name = name.empty() ? "kuhn_" + std::to_string(nx) + "x" + std::to_string(ny) + "x" + std::to_string(nz) : name;
-  IO::Medit_mesh g = make_kuhn_grid({nx, ny, nz}, scale, {0, 0, 0}, keep);
-  m.points = std::move(g.vertices);
-  m.tets = std::move(g.tetrahedra);
-  return m;
-}
 
 /// A Kuhn grid whose vertices are moved by multiples of 3/16 (at most
 /// `max_steps` of them per coordinate, spacing 6), redrawn until every
