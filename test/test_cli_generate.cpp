@@ -4,13 +4,16 @@
 // metric-frames generate: the six output files (read back with our own VTU
 // reader and the .fra and .perm readers), the hex size and its default
 // rules, the report, thread-count independence, and clear errors for bad
-// input, with nothing overwritten.
+// input, with nothing overwritten; and the pipeline's library functions,
+// which write the same files.
 #include <catch2/catch.hpp>
 
 #include "cli_test_support.h"
 #include "vtu_test_reader.h"
 
+#include <CGAL_ext/Frame_field_pipeline.h>
 #include <CGAL_ext/IO/Fra_file.h>
+#include <CGAL_ext/IO/Medit_sol.h>
 #include <CGAL_ext/IO/Medit_mesh.h>
 #include <CGAL_ext/IO/Perm_file.h>
 
@@ -525,4 +528,53 @@ TEST_CASE("generate with a metric of 1e308 I is a clear error naming the vertex 
   const std::string report = slurp(work / "big_metric_out" / "report.json");
   CHECK(report.find("null") == std::string::npos);
   CHECK(number_after(report, "expected_hexes") == Approx(8e12).epsilon(1e-12));
+}
+
+TEST_CASE("the pipeline's library functions write the files of generate, bit for bit", "[cli][generate][pipeline]") {
+  // A metric per vertex, varying in space: the .sol the CLI reads is what the library is given.
+  const CGAL_ext::IO::Medit_mesh m = CGAL_ext::IO::read_medit_mesh(l_shape);
+  std::vector<Eigen::Matrix3d> g;
+  for (const auto& p : m.vertices) {
+    Eigen::Matrix3d t;
+    t << 1 + p[0] * p[0], 0.3 * p[0] * p[1], 0, 0.3 * p[0] * p[1], 2 + p[1], 0.1 * p[2], 0, 0.1 * p[2], 1 + p[2] * p[2];
+    g.push_back(t);
+  }
+  std::filesystem::create_directories(work);
+  const std::string sol = (work / "pipeline_metric.sol").string();
+  CGAL_ext::IO::write_medit_sol(sol, g);
+  const Run cli = run("generate " + l_shape + " --metric " + sol + " --hex-size 0.5 --force -o " + (work / "cli").string());
+  INFO(cli.err);
+  REQUIRE(cli.exit_code == 0);
+
+  const std::string dir = (work / "library").string();
+  CGAL_ext::check_pipeline_output_directory(dir, {l_shape, sol}, true);
+  CGAL_ext::Pipeline_report_context context;
+  context.input = l_shape;
+  const CGAL_ext::Pipeline_tet_mesh mesh = CGAL_ext::load_tet_mesh(l_shape);
+  CGAL_ext::Pipeline_metric_input input;
+  input.per_vertex = CGAL_ext::IO::read_medit_sol(sol, mesh.mesh.vertices.size());
+  input.source = input.name = sol;
+  input.hex_size = 0.5;
+  const CGAL_ext::Pipeline_metric metric = CGAL_ext::make_pipeline_metric(mesh, input);
+  const CGAL_ext::Pipeline_frame_field frames =
+      CGAL_ext::generate_pipeline_frame_field(metric, context.options, CGAL_ext::Singularity_repair_options());
+  CGAL_ext::write_pipeline_outputs(dir, mesh, frames);
+  CGAL_ext::write_pipeline_report(dir, CGAL_ext::pipeline_report_json(mesh, metric, frames, context));
+
+  CHECK(metric.hex_size == 0.5);
+  CHECK(frames.frames->size() == m.tetrahedra.size());
+  for (const std::string& name : CGAL_ext::pipeline_output_names()) {
+    INFO(name);
+    std::string a = slurp(work / "cli" / name), b = slurp(work / "library" / name);
+    REQUIRE(!a.empty());
+    if (name == "report.json") { // but for the timings
+      a = a.substr(0, a.find("\"stage_seconds\""));
+      b = b.substr(0, b.find("\"stage_seconds\""));
+    }
+    CHECK(a == b);
+  }
+  // The library refuses what the CLI refuses: a tensor count that does not match the mesh.
+  input.per_vertex->pop_back();
+  CHECK_THROWS_WITH(CGAL_ext::make_pipeline_metric(mesh, input),
+                    Catch::Contains(sol) && Catch::Contains("mesh vertices"));
 }

@@ -25,4 +25,8 @@
 /// \defgroup PkgCGALExtFrames Octahedral frame fields
 /// SH band-4 frames, frame-field generation in a metric, singular edges.
 
+/// \defgroup PkgCGALExtPipeline The generate pipeline
+/// Mesh, metric, frame field, singularities and output files, as the
+/// `metric-frames generate` command chains them, callable from C++.
+
 #endif // CGAL_EXT_GROUPS_H

@@ -13,6 +13,8 @@
 #include <iostream>
 #include <memory>
 
+#include <CGAL_ext/internal/json_text.h>
+
 #include <tbb/global_control.h>
 #include <optional>
 #include <stdexcept>
@@ -116,21 +118,7 @@ private:
   Clock::time_point start_, last_;
 };
 
-/// The JSON string-literal body of `s` (quotes, backslashes and control characters escaped).
-inline std::string json_escape(const std::string& s) {
-  std::string out;
-  for (char ch : s) {
-    if (ch == '"' || ch == '\\') out += '\\';
-    if (static_cast<unsigned char>(ch) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", ch);
-      out += buf;
-    } else {
-      out += ch;
-    }
-  }
-  return out;
-}
+using internal::json_escape;
 
 /// A positive finite number, or a usage error naming the option.
 inline double parse_positive(Arguments& a, const std::string& option, const std::string& value) {

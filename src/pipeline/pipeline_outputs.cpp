@@ -1,0 +1,317 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// The output steps of the generate pipeline (Frame_field_pipeline.h): the
+// files for CubeCover, HexEx and ParaView, report.json and the summary.
+#include <CGAL_ext/Frame_field_pipeline.h>
+
+#include "../IO/write_file_atomically.h"
+
+#include <CGAL_ext/IO/Fra_file.h>
+#include <CGAL_ext/IO/Medit_mesh.h>
+#include <CGAL_ext/IO/Perm_file.h>
+#include <CGAL_ext/IO/Vtu_file.h>
+#include <CGAL_ext/Input_error.h>
+#include <CGAL_ext/internal/json_text.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace CGAL_ext {
+
+namespace {
+
+using Frames = Pipeline_frame_field_3;
+using Matchings = Pipeline_matchings_3;
+
+using internal::json_escape;
+std::string number(double x) { return internal::json_number(x); }
+
+std::string point_json(const Eigen::Vector3d& p) {
+  return "[" + number(p(0)) + ", " + number(p(1)) + ", " + number(p(2)) + "]";
+}
+
+// The VTK cell type code of a singular edge in singularities.vtu.
+int type_code(Singularity_type t) {
+  switch (t) {
+    case Singularity_type::plus_quarter: return 1;
+    case Singularity_type::minus_quarter: return -1;
+    case Singularity_type::half: return 2;
+    case Singularity_type::third: return 3;
+    default: return 4; // quarter_across
+  }
+}
+
+// frames.fra, frames.perm, frames.vtu: per tet, the gradients, matchings and edges.
+void write_frame_files(const std::filesystem::path& dir, const IO::Medit_mesh& mesh, const Frames& ff,
+                       const Matchings& matchings) {
+  const std::size_t nt = ff.size();
+  std::vector<std::array<double, 9>> gradients(nt);
+  std::array<IO::Vtu_array, 3> edge{{{"hex_edge_1", 3, {}}, {"hex_edge_2", 3, {}}, {"hex_edge_3", 3, {}}}};
+  std::array<IO::Vtu_array, 3> grad{{{"parameter_gradient_1", 3, {}}, {"parameter_gradient_2", 3, {}},
+                                     {"parameter_gradient_3", 3, {}}}};
+  IO::Vtu_array gm{"metric", 9, {}}, density{"energy_density", 1, {}}, boundary{"boundary", 1, {}, true},
+      align{"alignment_error_deg", 1, {}};
+  std::vector<double> alignment(nt, 0.0);
+  std::vector<char> on_boundary(nt, 0);
+  for (const auto& b : ff.boundary_faces()) {
+    on_boundary[b.tet] = 1;
+    alignment[b.tet] = std::max(alignment[b.tet], ff.alignment_error_deg(b));
+  }
+  for (std::size_t i = 0; i < nt; ++i) {
+    const Eigen::Matrix3d F = ff.frame(i), G = ff.parameter_gradients(i); // hex edges, parameter gradients
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) {
+        gradients[i][3 * k + c] = G(c, k);
+        edge[k].values.push_back(F(c, k));
+        grad[k].values.push_back(G(c, k));
+      }
+    const Eigen::Matrix3d g = ff.sqrt_metric(i) * ff.sqrt_metric(i);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) gm.values.push_back(g(r, c));
+    density.values.push_back(ff.energy_density(i));
+    boundary.values.push_back(on_boundary[i]);
+    align.values.push_back(alignment[i]);
+  }
+  IO::write_fra((dir / "frames.fra").string(), gradients);
+  IO::write_perm((dir / "frames.perm").string(), matchings.perm_file(ff));
+  IO::write_medit_mesh((dir / "mesh.mesh").string(), mesh);
+  IO::write_vtu_tetrahedra((dir / "frames.vtu").string(), mesh.vertices, mesh.tetrahedra,
+                           {edge[0], edge[1], edge[2], grad[0], grad[1], grad[2], gm, density, boundary, align});
+}
+
+// singularities.vtu: the singular edges as lines, nodes as point data.
+void write_singularities_vtu(const std::string& path, const IO::Medit_mesh& mesh, const std::vector<Singular_edge>& sing,
+                             const Singularity_graph& graph) {
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::array<std::size_t, 2>> lines;
+  std::map<std::size_t, std::size_t> local;
+  IO::Vtu_array type{"type", 1, {}, true}, index{"index", 1, {}}, valence{"valence", 1, {}, true},
+      meshable{"meshable", 1, {}, true}, turn{"turn_deg", 1, {}}, axis_angle{"axis_angle_deg", 1, {}},
+      edge_axis_angle{"edge_axis_angle_deg", 1, {}},
+      axis{"axis", 3, {}}, curve{"curve", 1, std::vector<double>(sing.size(), -1), true};
+  for (const Singular_edge& s : sing) {
+    std::array<std::size_t, 2> l;
+    for (int k = 0; k < 2; ++k) {
+      auto it = local.find(s.vertices[k]);
+      if (it == local.end()) {
+        it = local.emplace(s.vertices[k], points.size()).first;
+        points.push_back(mesh.vertices[s.vertices[k]]);
+      }
+      l[k] = it->second;
+    }
+    lines.push_back(l);
+    type.values.push_back(type_code(s.type));
+    index.values.push_back(s.type == Singularity_type::plus_quarter    ? 0.25
+                           : s.type == Singularity_type::minus_quarter ? -0.25
+                                                                       : std::nan(""));
+    valence.values.push_back(s.valence);
+    meshable.values.push_back(is_meshable(s.type) ? 1 : 0);
+    turn.values.push_back(s.turn_deg);
+    axis_angle.values.push_back(s.axis_angle_deg);
+    edge_axis_angle.values.push_back(s.edge_axis_angle_deg);
+    for (int c = 0; c < 3; ++c) axis.values.push_back(s.axis(c));
+  }
+  for (std::size_t c = 0; c < graph.curves.size(); ++c)
+    for (std::size_t e : graph.curves[c].edges) curve.values[e] = double(c + 1);
+  IO::Vtu_array vertex_id{"vertex_index", 1, std::vector<double>(points.size()), true},
+      node{"node", 1, std::vector<double>(points.size(), 0), true};
+  for (const auto& [global, l] : local) vertex_id.values[l] = double(global + 1);
+  for (const Singular_node& n : graph.nodes)
+    node.values[local.at(n.vertex)] = n.kind == Singular_node::Kind::boundary_end   ? 1
+                                      : n.kind == Singular_node::Kind::interior_end ? 2
+                                                                                    : 3;
+  IO::write_vtu_segments(path, points, lines, {type, index, valence, meshable, turn, axis_angle, edge_axis_angle, axis, curve},
+                         {vertex_id, node});
+}
+
+// The singular edges counted by type, every type listed.
+std::map<std::string, std::size_t> count_by_type(const std::vector<Singular_edge>& sing) {
+  std::map<std::string, std::size_t> by_type = {{"+1/4", 0}, {"-1/4", 0}, {"1/4 across", 0}, {"1/2", 0}, {"1/3", 0}};
+  for (const Singular_edge& s : sing) ++by_type[singularity_type_name(s.type)];
+  return by_type;
+}
+
+// The "singularities" object of report.json. Vertex numbers are 1-based, as in mesh.mesh.
+std::string singularities_json(const Pipeline_frame_field& f) {
+  const std::vector<Singular_edge>& sing = f.singular_edges;
+  const Singularity_graph& graph = f.graph;
+  std::ostringstream js;
+  js << "{\n    \"edges\": " << sing.size() << ",\n    \"edges_by_type\": {";
+  bool first = true;
+  for (const auto& [name, n] : count_by_type(sing)) js << (first ? "" : ", ") << "\"" << name << "\": " << n, first = false;
+  js << "},\n    \"non_meshable_edges\": " << f.non_meshable_edges << ",\n    \"curves\": " << graph.curves.size()
+     << ",\n    \"closed_curves\": " << graph.closed_curves << ",\n    \"nodes\": " << graph.nodes.size()
+     << ",\n    \"junctions\": " << graph.junctions << ",\n    \"boundary_ends\": " << graph.boundary_ends
+     << ",\n    \"interior_ends\": " << graph.interior_ends << ",\n    \"non_meshable_edge_list\": [";
+  first = true;
+  for (const Singular_edge& s : sing) {
+    if (is_meshable(s.type)) continue;
+    js << (first ? "\n" : ",\n") << "      {\"vertices\": [" << s.vertices[0] + 1 << ", " << s.vertices[1] + 1
+       << "], \"midpoint\": " << point_json(s.midpoint) << ", \"type\": \"" << singularity_type_name(s.type)
+       << "\", \"turn_deg\": " << number(s.turn_deg) << ", \"axis_angle_deg\": " << number(s.axis_angle_deg)
+       << ", \"edge_axis_angle_deg\": " << number(s.edge_axis_angle_deg) << "}";
+    first = false;
+  }
+  js << (first ? "" : "\n    ") << "],\n    \"curve_list\": [";
+  first = true;
+  for (const Singular_curve& c : graph.curves) {
+    js << (first ? "\n" : ",\n") << "      {\"edges\": " << c.edges.size() << ", \"length\": " << number(c.length)
+       << ", \"closed\": " << (c.closed ? "true" : "false") << ", \"ends\": [" << c.vertices.front() + 1 << ", "
+       << c.vertices.back() + 1 << "], \"+1/4\": " << c.plus_quarter_edges << ", \"-1/4\": " << c.minus_quarter_edges
+       << ", \"non_meshable\": " << c.non_meshable_edges << "}";
+    first = false;
+  }
+  js << (first ? "" : "\n    ") << "],\n    \"node_list\": [";
+  first = true;
+  for (const Singular_node& n : graph.nodes) {
+    js << (first ? "\n" : ",\n") << "      {\"vertex\": " << n.vertex + 1 << ", \"position\": " << point_json(n.position)
+       << ", \"degree\": " << n.degree << ", \"kind\": \"" << singular_node_kind_name(n.kind) << "\"}";
+    first = false;
+  }
+  js << (first ? "" : "\n    ") << "]\n  }";
+  return js.str();
+}
+
+// The "repair" object of report.json, or null if the repair was not run.
+std::string repair_json(const std::optional<Singularity_repair_report>& fix) {
+  if (!fix) return "null";
+  return "{\"non_meshable_before\": " + std::to_string(fix->non_meshable_before) +
+         ", \"non_meshable_after\": " + std::to_string(fix->non_meshable_after) +
+         ", \"rounds\": " + std::to_string(fix->rounds) + ", \"batches\": " + std::to_string(fix->batches) +
+         ", \"regions_tried\": " + std::to_string(fix->regions_tried) +
+         ", \"regions_kept\": " + std::to_string(fix->regions_accepted) +
+         ", \"tets_changed\": " + std::to_string(fix->tets_changed) +
+         ", \"energy_before\": " + number(fix->energy_before) + ", \"energy_after\": " + number(fix->energy_after) +
+         "}";
+}
+
+} // namespace
+
+const std::vector<std::string>& pipeline_output_names() {
+  static const std::vector<std::string> names = {"frames.fra", "frames.perm", "mesh.mesh", "frames.vtu",
+                                                 "singularities.vtu", "report.json"};
+  return names;
+}
+
+void check_pipeline_output_directory(const std::string& directory, const std::vector<std::string>& inputs, bool force) {
+  namespace fs = std::filesystem;
+  IO::internal::check_output_directory(directory);
+  std::error_code ec;
+  for (const std::string& name : pipeline_output_names()) {
+    const fs::path p = fs::path(directory) / name;
+    if (!fs::exists(p, ec)) continue;
+    for (const std::string& input : inputs)
+      if (fs::equivalent(p, input, ec)) throw std::runtime_error(p.string() + ": the output would overwrite an input file");
+    if (!force) throw std::runtime_error(p.string() + ": the file exists; give --force to replace the outputs");
+  }
+}
+
+void write_pipeline_outputs(const std::string& directory, const Pipeline_tet_mesh& mesh,
+                            const Pipeline_frame_field& frames) {
+  std::error_code ec;
+  std::filesystem::create_directories(directory, ec);
+  if (ec) throw std::runtime_error(directory + ": cannot create the output directory: " + ec.message());
+  const std::filesystem::path dir(directory);
+  write_frame_files(dir, mesh.mesh, *frames.frames, *frames.matchings);
+  write_singularities_vtu((dir / "singularities.vtu").string(), mesh.mesh, frames.singular_edges, frames.graph);
+}
+
+std::string pipeline_report_json(const Pipeline_tet_mesh& mesh, const Pipeline_metric& metric,
+                                 const Pipeline_frame_field& frames, const Pipeline_report_context& context) {
+  const Frame_field_statistics& st = frames.frames->statistics();
+  const Face_angle_statistics& angles = frames.face_angles;
+  std::ostringstream js;
+  js << "{\n"
+     << "  \"input\": \"" << json_escape(context.input) << "\",\n"
+     << "  \"metric\": \"" << json_escape(metric.name) << "\",\n"
+     << "  \"hex_size\": " << (metric.scaled ? number(metric.hex_size) : "null") << ",\n"
+     << "  \"hex_size_rule\": \"" << json_escape(metric.hex_size_rule) << "\",\n"
+     << "  \"expected_hexes\": " << number(metric.expected_hexes) << ",\n"
+     << "  \"tets\": " << frames.frames->size() << ",\n"
+     << "  \"vertices\": " << mesh.mesh.vertices.size() << ",\n"
+     << "  \"interior_faces\": " << st.interior_faces << ",\n"
+     << "  \"boundary_faces\": " << st.boundary_faces << ",\n"
+     << "  \"singular_edges\": " << frames.singular_edges.size() << ",\n"
+     << "  \"singularities\": " << singularities_json(frames) << ",\n"
+     << "  \"smoothness_energy\": " << number(st.smoothness_energy) << ",\n"
+     << "  \"smoothness_energy_per_weight\": " << number(st.smoothness_energy / st.total_face_weight) << ",\n"
+     << "  \"projected_energy\": " << number(st.projected_energy) << ",\n"
+     << "  \"face_angle_deg\": {\"mean\": " << number(angles.mean_deg) << ", \"median\": " << number(angles.median_deg)
+     << ", \"max\": " << number(angles.max_deg) << "},\n"
+     << "  \"boundary_alignment_error_deg\": {\"mean\": " << number(st.boundary_error_mean_deg)
+     << ", \"max\": " << number(st.boundary_error_max_deg) << "},\n"
+     << "  \"g_orthonormality_max_error\": " << number(st.max_orthonormality_error) << ",\n"
+     << "  \"hard_boundary_tets\": {\"one_axis\": " << st.hard_one_axis << ", \"two_axes\": " << st.hard_two_axes << "},\n"
+     << "  \"sharp_features\": {\"angle_deg\": " << number(context.options.feature_angle_deg)
+     << ", \"edges\": " << st.feature_edges << ", \"curve_vertices\": " << st.feature_curve_vertices
+     << ", \"corners\": " << st.feature_corners << ", \"tets\": " << st.feature_tets << "},\n"
+     << "  \"repair\": " << repair_json(frames.repair) << ",\n"
+     << "  \"max_transport_angle_deg\": " << number(st.max_transport_angle * 180 / M_PI) << ",\n"
+     << "  \"linear_iterations\": " << st.linear_iterations << ",\n"
+     << "  \"linear_residual\": " << number(st.linear_residual) << ",\n"
+     << "  \"refinement_iterations\": " << st.refinement_iterations << ",\n"
+     << "  \"stage_seconds\": {";
+  bool first = true;
+  for (const auto& [name, s] : context.stage_seconds) {
+    js << (first ? "" : ", ") << "\"" << json_escape(name) << "\": " << number(s);
+    first = false;
+  }
+  js << "}\n}\n";
+  return js.str();
+}
+
+std::string write_pipeline_report(const std::string& directory, const std::string& json) {
+  const std::string path = (std::filesystem::path(directory) / "report.json").string();
+  IO::internal::write_file_atomically(path, [&](std::FILE* f) {
+    if (std::fwrite(json.data(), 1, json.size(), f) != json.size()) throw std::runtime_error(path + ": write failed");
+  });
+  return path;
+}
+
+std::string pipeline_summary_text(const Pipeline_tet_mesh& mesh, const Pipeline_metric& metric,
+                                  const Pipeline_frame_field& frames, const Pipeline_report_context& context) {
+  const Frame_field_statistics& st = frames.frames->statistics();
+  const Face_angle_statistics& angles = frames.face_angles;
+  const Singularity_graph& graph = frames.graph;
+  std::string types;
+  for (const auto& [name, n] : count_by_type(frames.singular_edges))
+    if (n) types += (types.empty() ? "" : ", ") + name + ": " + std::to_string(n);
+  const std::string hex = metric.scaled ? number(metric.hex_size) + " (" + metric.hex_size_rule + ")"
+                                        : std::string("the metric's unit length");
+  char buf[4096];
+  std::snprintf(buf, sizeof buf,
+                "\n  %-32s %zu (%zu vertices)\n  %-32s %s\n  %-32s %s\n  %-32s %.0f\n"
+                "  %-32s %.6g (per unit weight %.3g)\n  %-32s mean %.3g, median %.3g\n  %-32s mean %.3g, max %.3g\n"
+                "  %-32s %.3g\n  %-32s %zu edges, %zu corners (%.3g degrees), %zu tetrahedra follow them\n"
+                "  %-32s %zu%s%s%s\n  %-32s %zu (%zu closed), nodes %zu (junctions %zu, boundary ends %zu, interior "
+                "ends %zu)\n  %-32s %zu\n",
+                "tetrahedra", frames.frames->size(), mesh.mesh.vertices.size(), "metric", metric.name.c_str(),
+                "hex size", hex.c_str(), "expected hexahedra", metric.expected_hexes, "smoothness energy",
+                st.smoothness_energy, st.smoothness_energy / st.total_face_weight, "face angle (deg)", angles.mean_deg,
+                angles.median_deg, "boundary alignment error (deg)", st.boundary_error_mean_deg,
+                st.boundary_error_max_deg, "max |F^T g F - I|", st.max_orthonormality_error, "sharp features",
+                st.feature_edges, st.feature_corners, context.options.feature_angle_deg, st.feature_tets,
+                "singular edges", frames.singular_edges.size(), types.empty() ? "" : " (", types.c_str(),
+                types.empty() ? "" : ")", "singular curves", graph.curves.size(), graph.closed_curves,
+                graph.nodes.size(), graph.junctions, graph.boundary_ends, graph.interior_ends,
+                "non-meshable singular edges", frames.non_meshable_edges);
+  std::string text = buf;
+  std::size_t listed = 0;
+  for (const Singular_edge& s : frames.singular_edges) {
+    if (is_meshable(s.type) || listed == 5) continue;
+    std::snprintf(buf, sizeof buf, "    %s edge %zu-%zu at (%.6g, %.6g, %.6g)\n", singularity_type_name(s.type),
+                  s.vertices[0] + 1, s.vertices[1] + 1, s.midpoint(0), s.midpoint(1), s.midpoint(2));
+    text += buf;
+    ++listed;
+  }
+  if (frames.non_meshable_edges > listed) text += "    ... (all in report.json)\n";
+  return text;
+}
+
+} // namespace CGAL_ext
