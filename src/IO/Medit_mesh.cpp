@@ -5,6 +5,7 @@
 
 #include "write_file_atomically.h"
 
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -51,6 +52,57 @@ void read_cells(Medit_tokenizer& tk, const char* section, const char* element, s
   }
 }
 
+// Reads the Vertices section after its keyword: the count, then x y z and a reference per vertex.
+void read_vertices(Medit_tokenizer& tk, const std::string& path, Medit_mesh& m) {
+  const std::size_t n = tk.read_count("Vertices", 4);
+  m.vertices.resize(n);
+  m.vertex_references.resize(n);
+  m.vertex_lines.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      try {
+        m.vertices[i][k] = tk.read_double("a coordinate");
+      } catch (const Input_error& e) {
+        throw Input_error(path, e.line(), "vertex " + std::to_string(i + 1), e.problem());
+      }
+      if (k == 0) m.vertex_lines[i] = tk.line();
+    }
+    m.vertex_references[i] = static_cast<int>(tk.read_int("a vertex reference"));
+  }
+}
+
+// Reads over a section we do not use (skipped_sections); any other keyword is an error.
+void skip_section(Medit_tokenizer& tk, std::string_view kw) {
+  const Skipped_section* s = nullptr;
+  for (const auto& candidate : skipped_sections)
+    if (Medit_tokenizer::keyword_equals(kw, candidate.name)) s = &candidate;
+  if (!s) {
+    const bool numeric = !kw.empty() && (std::isdigit(static_cast<unsigned char>(kw[0])) || kw[0] == '-' || kw[0] == '.');
+    tk.fail("", numeric ? "unexpected number " + Input_error::quote(kw) +
+                              " where a section keyword was expected (a count does not match its section?)"
+                        : "unknown keyword " + Input_error::quote(kw));
+  }
+  if (s->tokens == 0) { // a string value (Identifier, Geometry): one token
+    tk.expect("a value");
+    return;
+  }
+  const std::size_t n = tk.read_count(s->name, s->tokens);
+  const std::string what = std::string("a record of ") + s->name;
+  for (std::size_t i = 0; i < n * s->tokens; ++i) tk.expect(what.c_str());
+}
+
+// Every vertex index of `cells` is below `nv`, or an error naming the cell (1-based) and its line.
+template <std::size_t N>
+void check_index_range(const std::string& path, const std::vector<std::array<std::size_t, N>>& cells,
+                       const char* element, const std::vector<std::size_t>* lines, std::size_t nv) {
+  for (std::size_t i = 0; i < cells.size(); ++i)
+    for (std::size_t v : cells[i])
+      if (v >= nv)
+        throw Input_error(path, lines ? (*lines)[i] : 0, std::string(element) + " " + std::to_string(i + 1),
+                          "vertex index " + std::to_string(v + 1) + " is out of range 1.." + std::to_string(nv) +
+                              " (" + std::to_string(nv) + (nv == 1 ? " vertex" : " vertices") + " in the file)");
+}
+
 } // namespace
 
 Medit_mesh read_medit_mesh(const std::string& path) {
@@ -71,21 +123,7 @@ Medit_mesh read_medit_mesh(const std::string& path) {
         tk.fail("", "Dimension " + std::to_string(d) + ": only 3D tetrahedral meshes are supported");
     } else if (Medit_tokenizer::keyword_equals(kw, "Vertices")) {
       if (have_vertices) tk.fail("", "a second Vertices section");
-      const std::size_t n = tk.read_count("Vertices", 4);
-      m.vertices.resize(n);
-      m.vertex_references.resize(n);
-      m.vertex_lines.resize(n);
-      for (std::size_t i = 0; i < n; ++i) {
-        for (int k = 0; k < 3; ++k) {
-          try {
-            m.vertices[i][k] = tk.read_double("a coordinate");
-          } catch (const Input_error& e) {
-            throw Input_error(path, e.line(), "vertex " + std::to_string(i + 1), e.problem());
-          }
-          if (k == 0) m.vertex_lines[i] = tk.line();
-        }
-        m.vertex_references[i] = static_cast<int>(tk.read_int("a vertex reference"));
-      }
+      read_vertices(tk, path, m);
       have_vertices = true;
     } else if (Medit_tokenizer::keyword_equals(kw, "Tetrahedra")) {
       if (have_tets) tk.fail("", "a second Tetrahedra section");
@@ -102,22 +140,7 @@ Medit_mesh read_medit_mesh(const std::string& path) {
     } else if (Medit_tokenizer::keyword_equals(kw, "End")) {
       break;
     } else {
-      const Skipped_section* s = nullptr;
-      for (const auto& candidate : skipped_sections)
-        if (Medit_tokenizer::keyword_equals(kw, candidate.name)) s = &candidate;
-      if (!s) {
-        const bool numeric = !kw.empty() && (std::isdigit(static_cast<unsigned char>(kw[0])) || kw[0] == '-' || kw[0] == '.');
-        tk.fail("", numeric ? "unexpected number " + Input_error::quote(kw) +
-                                  " where a section keyword was expected (a count does not match its section?)"
-                            : "unknown keyword " + Input_error::quote(kw));
-      }
-      if (s->tokens == 0) { // a string value (Identifier, Geometry): one token
-        tk.expect("a value");
-        continue;
-      }
-      const std::size_t n = tk.read_count(s->name, s->tokens);
-      std::string_view t;
-      for (std::size_t i = 0; i < n * s->tokens; ++i) t = tk.expect((std::string("a record of ") + s->name).c_str());
+      skip_section(tk, kw);
     }
   }
   (void)have_version;
@@ -127,18 +150,9 @@ Medit_mesh read_medit_mesh(const std::string& path) {
   if (m.tetrahedra.empty()) throw Input_error(path, tet_section_line, "", "the Tetrahedra section is empty");
 
   // Indices were checked to be positive; check the upper bound now that all sections are read.
-  const std::size_t nv = m.vertices.size();
-  auto check = [&](const auto& cells, const char* element, const std::vector<std::size_t>* lines) {
-    for (std::size_t i = 0; i < cells.size(); ++i)
-      for (std::size_t v : cells[i])
-        if (v >= nv)
-          throw Input_error(path, lines ? (*lines)[i] : 0, std::string(element) + " " + std::to_string(i + 1),
-                            "vertex index " + std::to_string(v + 1) + " is out of range 1.." + std::to_string(nv) +
-                                " (" + std::to_string(nv) + (nv == 1 ? " vertex" : " vertices") + " in the file)");
-  };
-  check(m.tetrahedra, "tetrahedron", &m.tetrahedron_lines);
-  check(m.triangles, "triangle", nullptr);
-  check(m.edges, "edge", nullptr);
+  check_index_range(path, m.tetrahedra, "tetrahedron", &m.tetrahedron_lines, m.vertices.size());
+  check_index_range(path, m.triangles, "triangle", nullptr, m.vertices.size());
+  check_index_range(path, m.edges, "edge", nullptr, m.vertices.size());
   return m;
 }
 

@@ -41,6 +41,67 @@ void check_count_fits(const Medit_tokenizer& tk, const std::string& section, std
                          std::to_string(tk.remaining_bytes()) + " bytes): wrong count or truncated file");
 }
 
+// The header of a SolAt... section after its keyword: the record count, the
+// number of fields, the tokens per record and the type of the last field.
+struct Solution_header {
+  std::size_t count;
+  std::int64_t fields;
+  std::size_t tokens;
+  std::int64_t type;
+};
+
+Solution_header read_solution_header(Medit_tokenizer& tk, const std::string& section) {
+  const std::int64_t c = tk.read_int(("the number of records of " + section).c_str());
+  if (c < 0) tk.fail(section, "negative record count " + std::to_string(c));
+  Solution_header h{static_cast<std::size_t>(c), tk.read_int("the number of solution fields"), 0, 0};
+  if (h.fields <= 0 || h.fields > 64) tk.fail(section, "invalid number of solution fields " + std::to_string(h.fields));
+  for (std::int64_t f = 0; f < h.fields; ++f) {
+    h.type = tk.read_int("a solution field type");
+    const std::size_t n = values_per_type(h.type);
+    if (n == 0) tk.fail(section, "unknown solution field type " + std::to_string(h.type));
+    h.tokens += n;
+  }
+  check_count_fits(tk, section, h.count, h.tokens);
+  return h;
+}
+
+// The metric of vertex i (0-based): a size h (type 1, g = I / h^2) or the
+// lower triangle of a tensor (type 3), checked; errors name the vertex.
+Eigen::Matrix3d read_vertex_metric(Medit_tokenizer& tk, const std::string& path, std::size_t i, std::int64_t type) {
+  const std::string element = "vertex " + std::to_string(i + 1);
+  std::size_t line = 0;
+  Eigen::Matrix3d g;
+  try {
+    if (type == 1) {
+      const double h = tk.read_double("a size");
+      line = tk.line();
+      // A size too small or too large would pass as a tensor that is
+      // "not finite" or "zero" below: name the size instead.
+      const std::string problem = !(h > 0) ? "is not positive" : check_metric_size(h);
+      if (!problem.empty()) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "size h = %.17g ", h);
+        throw Input_error(path, line, element, buf + problem);
+      }
+      g = Eigen::Matrix3d::Identity() / (h * h);
+    } else {
+      double m[6];
+      for (int k = 0; k < 6; ++k) {
+        m[k] = tk.read_double("a metric coefficient");
+        if (k == 0) line = tk.line();
+      }
+      // Lower triangle by rows: m11 m21 m22 m31 m32 m33.
+      g << m[0], m[1], m[3], m[1], m[2], m[4], m[3], m[4], m[5];
+    }
+  } catch (const Input_error& e) {
+    if (!e.element().empty()) throw;
+    throw Input_error(path, e.line(), element, e.problem());
+  }
+  const std::string why = check_metric_tensor(g);
+  if (!why.empty()) throw Input_error(path, line, element, why);
+  return g;
+}
+
 } // namespace
 
 std::vector<Eigen::Matrix3d> read_medit_sol(const std::string& path, std::size_t expected_vertex_count) {
@@ -59,21 +120,7 @@ std::vector<Eigen::Matrix3d> read_medit_sol(const std::string& path, std::size_t
       const std::string section(kw);
       const bool at_vertices = Medit_tokenizer::keyword_equals(kw, "SolAtVertices");
       if (at_vertices && have_solution) tk.fail("", "a second SolAtVertices section");
-      const std::int64_t c = tk.read_int(("the number of records of " + section).c_str());
-      if (c < 0) tk.fail(section, "negative record count " + std::to_string(c));
-      const std::size_t count = static_cast<std::size_t>(c);
-      const std::int64_t nfields = tk.read_int("the number of solution fields");
-      if (nfields <= 0 || nfields > 64)
-        tk.fail(section, "invalid number of solution fields " + std::to_string(nfields));
-      std::size_t tokens = 0;
-      std::int64_t type = 0;
-      for (std::int64_t f = 0; f < nfields; ++f) {
-        type = tk.read_int("a solution field type");
-        const std::size_t n = values_per_type(type);
-        if (n == 0) tk.fail(section, "unknown solution field type " + std::to_string(type));
-        tokens += n;
-      }
-      check_count_fits(tk, section, count, tokens);
+      const auto [count, nfields, tokens, type] = read_solution_header(tk, section);
       if (!at_vertices) { // skip the records of a section we do not use
         for (std::size_t i = 0; i < count * tokens; ++i) tk.expect(("a record of " + section).c_str());
         continue;
@@ -89,38 +136,7 @@ std::vector<Eigen::Matrix3d> read_medit_sol(const std::string& path, std::size_t
         tk.fail(section, "the file has " + std::to_string(count) + " vertex metrics but the mesh has " +
                              std::to_string(expected_vertex_count) + " vertices");
       metrics.resize(count);
-      for (std::size_t i = 0; i < count; ++i) {
-        const std::string element = "vertex " + std::to_string(i + 1);
-        std::size_t line = 0;
-        try {
-          if (type == 1) {
-            const double h = tk.read_double("a size");
-            line = tk.line();
-            // A size too small or too large would pass as a tensor that is
-            // "not finite" or "zero" below: name the size instead.
-            const std::string problem = !(h > 0) ? "is not positive" : check_metric_size(h);
-            if (!problem.empty()) {
-              char buf[64];
-              std::snprintf(buf, sizeof buf, "size h = %.17g ", h);
-              throw Input_error(path, line, element, buf + problem);
-            }
-            metrics[i] = Eigen::Matrix3d::Identity() / (h * h);
-          } else {
-            double m[6];
-            for (int k = 0; k < 6; ++k) {
-              m[k] = tk.read_double("a metric coefficient");
-              if (k == 0) line = tk.line();
-            }
-            // Lower triangle by rows: m11 m21 m22 m31 m32 m33.
-            metrics[i] << m[0], m[1], m[3], m[1], m[2], m[4], m[3], m[4], m[5];
-          }
-        } catch (const Input_error& e) {
-          if (!e.element().empty()) throw;
-          throw Input_error(path, e.line(), element, e.problem());
-        }
-        const std::string why = check_metric_tensor(metrics[i]);
-        if (!why.empty()) throw Input_error(path, line, element, why);
-      }
+      for (std::size_t i = 0; i < count; ++i) metrics[i] = read_vertex_metric(tk, path, i, type);
       have_solution = true;
     } else if (Medit_tokenizer::keyword_equals(kw, "End")) {
       break;

@@ -111,6 +111,116 @@ bool parse_count(std::string_view token, std::uint64_t& value) {
   return !token.empty() && r.ec == std::errc() && r.ptr == token.data() + token.size();
 }
 
+// The lines of an OFF file with tokens, comments removed, and their numbers.
+class Off_lines {
+public:
+  explicit Off_lines(const std::string& path) : path_(path), in_(path, std::ios::binary) {}
+  // The next line with tokens; false at the end.
+  bool next() {
+    while (std::getline(in_, text_)) {
+      ++line_;
+      tokens_ = line_tokens(text_);
+      if (!tokens_.empty()) return true;
+    }
+    return false;
+  }
+  const std::vector<std::string_view>& tokens() const { return tokens_; }
+  std::size_t line() const { return line_; }
+  Input_error error(const std::string& element, const std::string& problem) const {
+    return Input_error(path_, line_, element, problem);
+  }
+  Input_error truncated(const std::string& what) const {
+    return error("", "the file ends before " + what + " (truncated file?)");
+  }
+
+private:
+  std::string path_;
+  std::ifstream in_;
+  std::string text_;
+  std::size_t line_ = 0;
+  std::vector<std::string_view> tokens_;
+};
+
+// The OFF header: the keyword line (OFF, COFF, 4OFF...) if any, and the
+// vertex and face counts. Sets `homogeneous` for 4OFF.
+std::array<std::uint64_t, 2> read_off_header(Off_lines& in, bool& homogeneous) {
+  if (!in.next()) throw in.error("", "the file is empty");
+  std::size_t first = 0;
+  homogeneous = false;
+  const std::string_view keyword = in.tokens()[0];
+  if (keyword.size() >= 3 && keyword.substr(keyword.size() - 3) == "OFF") {
+    for (std::string_view t : in.tokens())
+      if (t == "BINARY")
+        throw in.error("", "binary OFF is not supported (CGAL 5.5's reader overflows on bad binary headers, found by "
+                           "fuzz_surface): write ASCII OFF, binary STL or binary PLY");
+    if (keyword[0] == 'n' || keyword.find("nOFF") != std::string_view::npos)
+      throw in.error("", "an OFF file of another dimension (nOFF) is not supported");
+    homogeneous = keyword.find('4') != std::string_view::npos;
+    first = 1;
+    if (in.tokens().size() == 1) { // the counts on the next line
+      if (!in.next()) throw in.truncated("the vertex and face counts");
+      first = 0;
+    }
+  } else if (std::uint64_t count = 0; !parse_count(keyword, count)) {
+    throw in.error("", "not an OFF file: expected 'OFF' or the counts, found " + Input_error::quote(keyword));
+  }
+  const std::vector<std::string_view>& tokens = in.tokens();
+  std::array<std::uint64_t, 2> counts{0, 0};
+  if (tokens.size() < first + 2 || !parse_count(tokens[first], counts[0]) || !parse_count(tokens[first + 1], counts[1]))
+    throw in.error("", "expected the vertex and face counts (non-negative integers), found " +
+                           Input_error::quote(tokens[first]) +
+                           (tokens.size() > first + 1 ? " " + Input_error::quote(tokens[first + 1]) : ""));
+  return counts;
+}
+
+// Reads vertex v (1-based) of an OFF file: x y z, or x y z w if homogeneous.
+Point read_off_vertex(Off_lines& in, std::uint64_t v, bool homogeneous) {
+  if (!in.next()) throw in.truncated("vertex " + std::to_string(v));
+  const std::vector<std::string_view>& tokens = in.tokens();
+  const std::string element = "vertex " + std::to_string(v);
+  const std::size_t coordinates = homogeneous ? 4 : 3;
+  double x[4] = {0, 0, 0, 1};
+  for (std::size_t k = 0; k < coordinates; ++k) {
+    if (k >= tokens.size())
+      throw in.error(element, std::to_string(coordinates) + " coordinates expected, " + std::to_string(tokens.size()) +
+                                  " found");
+    const std::string token(tokens[k]);
+    char* stop = nullptr;
+    x[k] = std::strtod(token.c_str(), &stop);
+    if (*stop != '\0') throw in.error(element, "expected a coordinate, found " + Input_error::quote(token));
+    if (!std::isfinite(x[k])) throw in.error(element, "a coordinate is not finite");
+  }
+  if (homogeneous && x[3] == 0) throw in.error(element, "the homogeneous coordinate w is 0");
+  const Point p(x[0] / x[3], x[1] / x[3], x[2] / x[3]);
+  if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()))
+    throw in.error(element, "a coordinate divided by w is not finite");
+  return p;
+}
+
+// Reads face f (1-based) of an OFF file: its vertex count, then the indices, each below `vertices`.
+std::vector<std::size_t> read_off_face(Off_lines& in, std::uint64_t f, std::uint64_t vertices) {
+  if (!in.next()) throw in.truncated("face " + std::to_string(f));
+  const std::vector<std::string_view>& tokens = in.tokens();
+  const std::string element = "face " + std::to_string(f);
+  std::uint64_t count = 0;
+  if (!parse_count(tokens[0], count))
+    throw in.error(element, "expected the number of its vertices (a non-negative integer), found " +
+                                Input_error::quote(tokens[0]));
+  if (tokens.size() - 1 < count)
+    throw in.error(element, std::to_string(count) + " vertex indices announced, " + std::to_string(tokens.size() - 1) +
+                                " found");
+  std::vector<std::size_t> face;
+  for (std::uint64_t k = 1; k <= count; ++k) {
+    std::uint64_t index = 0;
+    if (!parse_count(tokens[k], index) || index >= vertices)
+      throw in.error(element, "vertex index " + Input_error::quote(tokens[k]) + " is not in 0.." +
+                                  (vertices ? std::to_string(vertices - 1) : std::string("-1")) + " (" +
+                                  std::to_string(vertices) + " vertices in the file)");
+    face.push_back(static_cast<std::size_t>(index));
+  }
+  return face;
+}
+
 // Reads an ASCII OFF file into a polygon soup, naming the line of any
 // defect; a binary file (`OFF BINARY`) is refused.
 // Our own reader, because CGAL's (5.5) has undefined behaviour on bad
@@ -123,95 +233,11 @@ bool parse_count(std::string_view token, std::uint64_t& value) {
 // coordinates, is ignored), or 4OFF (homogeneous: x/w, y/w, z/w).
 void read_ascii_off(const std::string& path, std::vector<Point>& points,
                     std::vector<std::vector<std::size_t>>& faces_out) {
-  std::ifstream in(path, std::ios::binary);
-  std::string text;
-  std::size_t line = 0;
-  std::vector<std::string_view> tokens;
-  // The next line with tokens, comments removed; false at the end.
-  const auto next_line = [&]() {
-    while (std::getline(in, text)) {
-      ++line;
-      tokens = line_tokens(text);
-      if (!tokens.empty()) return true;
-    }
-    return false;
-  };
-  const auto truncated = [&](const std::string& what) {
-    return Input_error(path, line, "", "the file ends before " + what + " (truncated file?)");
-  };
-  if (!next_line()) throw Input_error(path, 0, "", "the file is empty");
-  std::size_t first = 0;
+  Off_lines in(path);
   bool homogeneous = false;
-  const std::string_view keyword = tokens[0];
-  if (keyword.size() >= 3 && keyword.substr(keyword.size() - 3) == "OFF") {
-    for (std::string_view t : tokens)
-      if (t == "BINARY")
-        throw Input_error(path, line, "",
-                          "binary OFF is not supported (CGAL 5.5's reader overflows on bad binary headers, found by "
-                          "fuzz_surface): write ASCII OFF, binary STL or binary PLY");
-    if (keyword[0] == 'n' || keyword.find("nOFF") != std::string_view::npos)
-      throw Input_error(path, line, "", "an OFF file of another dimension (nOFF) is not supported");
-    homogeneous = keyword.find('4') != std::string_view::npos;
-    first = 1;
-    if (tokens.size() == 1) { // the counts on the next line
-      if (!next_line()) throw truncated("the vertex and face counts");
-      first = 0;
-    }
-  } else if (std::uint64_t count = 0; !parse_count(keyword, count)) {
-    throw Input_error(path, line, "",
-                      "not an OFF file: expected 'OFF' or the counts, found " + Input_error::quote(keyword));
-  }
-  std::uint64_t vertices = 0, faces = 0;
-  if (tokens.size() < first + 2 || !parse_count(tokens[first], vertices) || !parse_count(tokens[first + 1], faces))
-    throw Input_error(path, line, "",
-                      "expected the vertex and face counts (non-negative integers), found " +
-                          Input_error::quote(tokens[first]) +
-                          (tokens.size() > first + 1 ? " " + Input_error::quote(tokens[first + 1]) : ""));
-  const std::size_t coordinates = homogeneous ? 4 : 3;
-  for (std::uint64_t v = 1; v <= vertices; ++v) {
-    if (!next_line()) throw truncated("vertex " + std::to_string(v));
-    const std::string element = "vertex " + std::to_string(v);
-    double x[4] = {0, 0, 0, 1};
-    for (std::size_t k = 0; k < coordinates; ++k) {
-      if (k >= tokens.size())
-        throw Input_error(path, line, element,
-                          std::to_string(coordinates) + " coordinates expected, " + std::to_string(tokens.size()) +
-                              " found");
-      const std::string token(tokens[k]);
-      char* stop = nullptr;
-      x[k] = std::strtod(token.c_str(), &stop);
-      if (*stop != '\0') throw Input_error(path, line, element, "expected a coordinate, found " + Input_error::quote(token));
-      if (!std::isfinite(x[k])) throw Input_error(path, line, element, "a coordinate is not finite");
-    }
-    if (homogeneous && x[3] == 0) throw Input_error(path, line, element, "the homogeneous coordinate w is 0");
-    points.emplace_back(x[0] / x[3], x[1] / x[3], x[2] / x[3]);
-    if (!std::isfinite(points.back().x()) || !std::isfinite(points.back().y()) || !std::isfinite(points.back().z()))
-      throw Input_error(path, line, element, "a coordinate divided by w is not finite");
-  }
-  for (std::uint64_t f = 1; f <= faces; ++f) {
-    if (!next_line()) throw truncated("face " + std::to_string(f));
-    const std::string element = "face " + std::to_string(f);
-    std::uint64_t count = 0;
-    if (!parse_count(tokens[0], count))
-      throw Input_error(path, line, element,
-                        "expected the number of its vertices (a non-negative integer), found " +
-                            Input_error::quote(tokens[0]));
-    if (tokens.size() - 1 < count)
-      throw Input_error(path, line, element,
-                        std::to_string(count) + " vertex indices announced, " + std::to_string(tokens.size() - 1) +
-                            " found");
-    std::vector<std::size_t> face;
-    for (std::uint64_t k = 1; k <= count; ++k) {
-      std::uint64_t index = 0;
-      if (!parse_count(tokens[k], index) || index >= vertices)
-        throw Input_error(path, line, element,
-                          "vertex index " + Input_error::quote(tokens[k]) + " is not in 0.." +
-                              (vertices ? std::to_string(vertices - 1) : std::string("-1")) + " (" +
-                              std::to_string(vertices) + " vertices in the file)");
-      face.push_back(static_cast<std::size_t>(index));
-    }
-    faces_out.push_back(std::move(face));
-  }
+  const auto [vertices, faces] = read_off_header(in, homogeneous);
+  for (std::uint64_t v = 1; v <= vertices; ++v) points.push_back(read_off_vertex(in, v, homogeneous));
+  for (std::uint64_t f = 1; f <= faces; ++f) faces_out.push_back(read_off_face(in, f, vertices));
 }
 
 std::string number_text(double x) {
@@ -250,36 +276,31 @@ double ply_binary_count(const unsigned char* b, std::string_view type, bool big_
   return as(double());
 }
 
-// Checks a PLY file before CGAL's reader, naming the line or the element.
-// CGAL's reader (5.5) adds a `property` to the last `element` read without
-// checking that there is one (undefined behaviour), reads vertex
-// coordinates of a type other than float or double through a null pointer
-// (a crash), and resizes a face's index list to the count the file gives
-// before reading it (a 300-byte file asked for 7.6 GB); all three were found
-// by fuzz_surface. Checked: the header (the `ply` line, the format, element
-// counts, properties after an element, with known types, x, y and z of the
-// vertices as float or double, `end_header`), then the body, walked without
-// storing it: every item present, and every list count a non-negative
-// integer whose entries the rest of the file can hold.
-void check_ply_file(const std::string& path) {
-  struct Property {
-    bool list;
-    std::string count_type, type, name;
-  };
-  struct Element {
-    std::string name;
-    std::uint64_t count;
-    std::vector<Property> properties;
-  };
-  std::vector<Element> elements;
+// A PLY header: its format and its elements with their properties.
+struct Ply_property {
+  bool list;
+  std::string count_type, type, name;
+};
+struct Ply_element {
+  std::string name;
+  std::uint64_t count;
+  std::vector<Ply_property> properties;
+};
+struct Ply_header {
+  std::vector<Ply_element> elements;
   std::string format;
-  std::ifstream in(path, std::ios::binary);
+};
+
+// Reads and checks the header of a PLY file from `in`, which is left at the body.
+Ply_header read_ply_header(const std::string& path, std::istream& in) {
+  Ply_header h;
+  std::vector<Ply_element>& elements = h.elements;
   std::string text;
   std::size_t line = 1;
   const auto check_vertex_element = [&](std::size_t element_line) {
     if (elements.empty() || (elements.back().name != "vertex" && elements.back().name != "vertices")) return;
     int coordinates = 0;
-    for (const Property& p : elements.back().properties)
+    for (const Ply_property& p : elements.back().properties)
       coordinates += !p.list && (p.name == "x" || p.name == "y" || p.name == "z");
     if (coordinates != 3)
       throw Input_error(path, element_line, "",
@@ -302,7 +323,7 @@ void check_ply_file(const std::string& path) {
     if (t[0] == "format") {
       if (t.size() != 3 || (t[1] != "ascii" && t[1] != "binary_little_endian" && t[1] != "binary_big_endian"))
         throw Input_error(path, line, "", "expected 'format ascii|binary_little_endian|binary_big_endian VERSION'");
-      format = std::string(t[1]);
+      h.format = std::string(t[1]);
     } else if (t[0] == "element") {
       std::uint64_t count = 0;
       if (t.size() != 3 || !parse_count(t[2], count))
@@ -315,7 +336,7 @@ void check_ply_file(const std::string& path) {
       const bool list = t.size() == 5 && t[1] == "list" && ply_type_size(t[2]) && ply_type_size(t[3]);
       if (!list && (t.size() != 3 || !ply_type_size(t[1])))
         throw Input_error(path, line, "", "expected 'property TYPE NAME' or 'property list TYPE TYPE NAME'");
-      Property p{list, list ? std::string(t[2]) : "", std::string(t[list ? 3 : 1]), std::string(t[list ? 4 : 2])};
+      Ply_property p{list, list ? std::string(t[2]) : "", std::string(t[list ? 3 : 1]), std::string(t[list ? 4 : 2])};
       const bool vertex = elements.back().name == "vertex" || elements.back().name == "vertices";
       if (vertex && !list && (p.name == "x" || p.name == "y" || p.name == "z") && p.type != "float" &&
           p.type != "float32" && p.type != "double" && p.type != "float64")
@@ -327,23 +348,29 @@ void check_ply_file(const std::string& path) {
     }
   }
   if (!header_done) throw Input_error(path, 0, "", "the PLY header has no 'end_header' line");
-  if (format.empty()) throw Input_error(path, 0, "", "the PLY header has no 'format' line");
+  if (h.format.empty()) throw Input_error(path, 0, "", "the PLY header has no 'format' line");
+  return h;
+}
 
+// Walks the body of a PLY file from `in` without storing it: every item
+// present, every list count a non-negative integer whose entries the rest of
+// the file can hold.
+void check_ply_body(const std::string& path, std::istream& in, const Ply_header& h) {
   // The body. Each item of an element with properties takes at least one
   // byte or token, so the walk ends with the file.
-  const bool ascii = format == "ascii", big_endian = format == "binary_big_endian";
+  const bool ascii = h.format == "ascii", big_endian = h.format == "binary_big_endian";
   const std::streamoff body = in.tellg();
   in.seekg(0, std::ios::end);
   const std::streamoff end = in.tellg();
   in.seekg(body);
   std::string token;
   unsigned char bytes[8];
-  for (const Element& e : elements) {
+  for (const Ply_element& e : h.elements) {
     if (e.properties.empty()) continue;
     for (std::uint64_t item = 1; item <= e.count; ++item) {
       const auto where = [&] { return "element '" + e.name + "', item " + std::to_string(item); };
       const auto truncated = [&] { return Input_error(path, 0, where(), "the file ends here (truncated file?)"); };
-      for (const Property& p : e.properties) {
+      for (const Ply_property& p : e.properties) {
         if (!p.list) {
           if (ascii ? !(in >> token) : !in.ignore(std::streamsize(ply_type_size(p.type))) ||
                                            in.gcount() != std::streamsize(ply_type_size(p.type)))
@@ -376,23 +403,26 @@ void check_ply_file(const std::string& path) {
   }
 }
 
-} // namespace
+// Checks a PLY file before CGAL's reader, naming the line or the element.
+// CGAL's reader (5.5) adds a `property` to the last `element` read without
+// checking that there is one (undefined behaviour), reads vertex
+// coordinates of a type other than float or double through a null pointer
+// (a crash), and resizes a face's index list to the count the file gives
+// before reading it (a 300-byte file asked for 7.6 GB); all three were found
+// by fuzz_surface. Checked: the header (the `ply` line, the format, element
+// counts, properties after an element, with known types, x, y and z of the
+// vertices as float or double, `end_header`), then the body, walked without
+// storing it: every item present, and every list count a non-negative
+// integer whose entries the rest of the file can hold.
+void check_ply_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  check_ply_body(path, in, read_ply_header(path, in));
+}
 
-// Reads a surface file into a closed, outward oriented triangle mesh, or throws.
-// Appends the repairs made to `repairs`.
-Surface read_closed_surface(const std::string& path, std::vector<std::string>& repairs) {
-  const std::string ext = lower_extension(path);
-  if (ext != ".off" && ext != ".obj" && ext != ".stl" && ext != ".ply")
-    throw Input_error(path, 0, "",
-                      (ext.empty() ? std::string("no file extension") : "unsupported extension '" + ext + "'") +
-                          ": expected .off, .obj, .stl or .ply");
-  IO::internal::check_input_file(path);
-  if (!std::ifstream(path, std::ios::binary)) throw Input_error(path, 0, "", "cannot open the file for reading");
-  if (ext == ".obj") check_obj_face_indices(path);
-  if (ext == ".ply") check_ply_file(path);
-
-  std::vector<Point> points;
-  std::vector<std::vector<std::size_t>> faces;
+// Reads the polygon soup of a surface file (our OFF reader, or CGAL's for
+// the other formats), and checks its coordinates and face indices.
+void read_checked_soup(const std::string& path, const std::string& ext, std::vector<Point>& points,
+                       std::vector<std::vector<std::size_t>>& faces) {
   bool read = false;
   try {
     if (ext == ".off") {
@@ -423,27 +453,34 @@ Surface read_closed_surface(const std::string& path, std::vector<std::string>& r
                           "vertex index " + std::to_string(v) + " is out of range (" +
                               std::to_string(points.size()) + " vertices)");
   }
+}
 
-  if (!PMP::is_polygon_soup_a_polygon_mesh(faces)) {
-    // A soup (STL), duplicated points or faces, or inconsistent orientations.
-    const std::size_t points_before = points.size(), faces_before = faces.size();
-    PMP::repair_polygon_soup(points, faces);
-    const bool oriented = PMP::orient_polygon_soup(points, faces);
-    if (!oriented || faces.empty() || !PMP::is_polygon_soup_a_polygon_mesh(faces))
-      throw Input_error(path, 0, "",
-                        "the faces do not form a 2-manifold surface (an edge with more than two faces, a vertex "
-                        "where sheets meet, or a non-orientable surface), even after polygon soup repair");
-    repairs.push_back("polygon soup repaired and oriented consistently (" +
-                      std::to_string(points_before - std::min(points_before, points.size())) +
-                      " duplicate or unused points and " +
-                      std::to_string(faces_before - std::min(faces_before, faces.size())) +
-                      " degenerate or duplicate faces removed)");
-  }
-  // Polygons: split into triangles here, in the soup. Only convex planar
-  // polygons are accepted (decided with exact predicates) and fanned from
-  // their first vertex: CGAL 5.5's triangulate_faces() binds null references
-  // on polygons with coinciding, collinear or crossing vertices (found by
-  // fuzz_surface), and such faces have no clear meaning anyway.
+// Repairs a soup that is not a polygon mesh (an STL soup, duplicated points
+// or faces, inconsistent orientations), or throws; the repair is reported.
+void make_polygon_mesh_soup(const std::string& path, std::vector<Point>& points,
+                            std::vector<std::vector<std::size_t>>& faces, std::vector<std::string>& repairs) {
+  if (PMP::is_polygon_soup_a_polygon_mesh(faces)) return;
+  const std::size_t points_before = points.size(), faces_before = faces.size();
+  PMP::repair_polygon_soup(points, faces);
+  const bool oriented = PMP::orient_polygon_soup(points, faces);
+  if (!oriented || faces.empty() || !PMP::is_polygon_soup_a_polygon_mesh(faces))
+    throw Input_error(path, 0, "",
+                      "the faces do not form a 2-manifold surface (an edge with more than two faces, a vertex "
+                      "where sheets meet, or a non-orientable surface), even after polygon soup repair");
+  repairs.push_back("polygon soup repaired and oriented consistently (" +
+                    std::to_string(points_before - std::min(points_before, points.size())) +
+                    " duplicate or unused points and " +
+                    std::to_string(faces_before - std::min(faces_before, faces.size())) +
+                    " degenerate or duplicate faces removed)");
+}
+
+// Splits the polygons of the soup into triangles. Only convex planar
+// polygons are accepted (decided with exact predicates) and fanned from
+// their first vertex: CGAL 5.5's triangulate_faces() binds null references
+// on polygons with coinciding, collinear or crossing vertices (found by
+// fuzz_surface), and such faces have no clear meaning anyway.
+void triangulate_convex_polygons(const std::string& path, const std::vector<Point>& points,
+                                 std::vector<std::vector<std::size_t>>& faces, std::vector<std::string>& repairs) {
   std::size_t polygons = 0;
   std::vector<std::vector<std::size_t>> triangles;
   for (std::size_t f = 0; f < faces.size(); ++f) {
@@ -474,7 +511,12 @@ Surface read_closed_surface(const std::string& path, std::vector<std::string>& r
   }
   if (polygons > 0) repairs.push_back(std::to_string(polygons) + " faces with more than 3 vertices triangulated");
   faces.swap(triangles);
+}
 
+// The polygon mesh of the soup, closed, without self-intersections, and
+// oriented to bound a volume (the faces reversed are reported), or throws.
+Surface closed_oriented_surface(const std::string& path, std::vector<Point>& points,
+                                std::vector<std::vector<std::size_t>>& faces, std::vector<std::string>& repairs) {
   Surface surface;
   PMP::polygon_soup_to_polygon_mesh(points, faces, surface);
   points.clear();
@@ -517,6 +559,29 @@ Surface read_closed_surface(const std::string& path, std::vector<std::string>& r
     repairs.push_back(std::to_string(reversed) + " of " + std::to_string(surface.number_of_faces()) +
                       " faces reversed to bound a volume (the surface, or some of its components, was inside-out)");
   return surface;
+}
+
+} // namespace
+
+// Reads a surface file into a closed, outward oriented triangle mesh, or throws.
+// Appends the repairs made to `repairs`.
+Surface read_closed_surface(const std::string& path, std::vector<std::string>& repairs) {
+  const std::string ext = lower_extension(path);
+  if (ext != ".off" && ext != ".obj" && ext != ".stl" && ext != ".ply")
+    throw Input_error(path, 0, "",
+                      (ext.empty() ? std::string("no file extension") : "unsupported extension '" + ext + "'") +
+                          ": expected .off, .obj, .stl or .ply");
+  IO::internal::check_input_file(path);
+  if (!std::ifstream(path, std::ios::binary)) throw Input_error(path, 0, "", "cannot open the file for reading");
+  if (ext == ".obj") check_obj_face_indices(path);
+  if (ext == ".ply") check_ply_file(path);
+
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> faces;
+  read_checked_soup(path, ext, points, faces);
+  make_polygon_mesh_soup(path, points, faces, repairs);
+  triangulate_convex_polygons(path, points, faces, repairs);
+  return closed_oriented_surface(path, points, faces, repairs);
 }
 
 } // namespace internal

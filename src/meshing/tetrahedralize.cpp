@@ -194,6 +194,56 @@ void sort_records(std::vector<std::pair<std::array<std::size_t, N>, int>>& recor
   }
 }
 
+// The vertices of the cells of a complex, numbered in Hilbert-curve order
+// (locality for the users of the mesh).
+template <class C3t3>
+struct Complex_vertices {
+  using Vertex_handle = typename C3t3::Triangulation::Vertex_handle;
+  std::unordered_map<Vertex_handle, std::size_t> first_index; // order of first use
+  std::vector<Vertex_handle> handles;                         // by first use
+  std::vector<Point> points;                                  // by first use
+  std::vector<std::size_t> order;                             // Hilbert position -> first use
+  std::vector<std::size_t> new_index;                         // first use -> Hilbert position
+
+  explicit Complex_vertices(const C3t3& c3t3) {
+    const auto& tr = c3t3.triangulation();
+    const auto bare = tr.geom_traits().construct_point_3_object();
+    first_index.reserve(c3t3.number_of_cells_in_complex() / 4 + 16);
+    for (auto c = c3t3.cells_in_complex_begin(); c != c3t3.cells_in_complex_end(); ++c)
+      for (int i = 0; i < 4; ++i) {
+        const Vertex_handle v = c->vertex(i);
+        if (first_index.emplace(v, handles.size()).second) {
+          handles.push_back(v);
+          points.push_back(bare(tr.point(v)));
+        }
+      }
+    order.resize(points.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    using Hilbert_traits = CGAL::Spatial_sort_traits_adapter_3<K, CGAL::Pointer_property_map<Point>::type>;
+    CGAL::hilbert_sort(order.begin(), order.end(), Hilbert_traits(CGAL::make_property_map(points)));
+    new_index.resize(points.size());
+    for (std::size_t i = 0; i < order.size(); ++i) new_index[order[i]] = i;
+  }
+  std::size_t index_of(Vertex_handle v) const { return new_index[first_index.find(v)->second]; }
+};
+
+// The protected sharp edges of the complex, sorted, with their curve indices.
+template <class C3t3>
+void add_complex_edges(const C3t3& c3t3, const Complex_vertices<C3t3>& vertices, IO::Medit_mesh& m) {
+  const auto& first_index = vertices.first_index;
+  const auto& new_index = vertices.new_index;
+  std::vector<std::pair<std::array<std::size_t, 2>, int>> edges;
+  for (auto e = c3t3.edges_in_complex_begin(); e != c3t3.edges_in_complex_end(); ++e) {
+    const auto a = first_index.find(e->first->vertex(e->second));
+    const auto b = first_index.find(e->first->vertex(e->third));
+    if (a == first_index.end() || b == first_index.end()) continue;
+    const std::size_t i = new_index[a->second], j = new_index[b->second];
+    edges.emplace_back(std::array<std::size_t, 2>{std::min(i, j), std::max(i, j)},
+                       static_cast<int>(c3t3.curve_index(*e)));
+  }
+  sort_records(edges, m.edges, m.edge_references);
+}
+
 // Converts the cells of the complex to a Medit mesh: vertices numbered in
 // Hilbert order, tetrahedra positively oriented, boundary facets oriented
 // outwards, everything sorted. Linear but for the sorts.
@@ -206,36 +256,16 @@ IO::Medit_mesh to_medit_mesh(const C3t3& c3t3) {
   const Tr& tr = c3t3.triangulation();
   const auto bare = tr.geom_traits().construct_point_3_object();
 
-  // The vertices of the cells of the complex, in order of first use.
-  std::unordered_map<Vertex_handle, std::size_t> first_index;
-  std::vector<Vertex_handle> handles;
-  std::vector<Point> points;
-  first_index.reserve(c3t3.number_of_cells_in_complex() / 4 + 16);
-  for (auto c = c3t3.cells_in_complex_begin(); c != c3t3.cells_in_complex_end(); ++c)
-    for (int i = 0; i < 4; ++i) {
-      const Vertex_handle v = c->vertex(i);
-      if (first_index.emplace(v, handles.size()).second) {
-        handles.push_back(v);
-        points.push_back(bare(tr.point(v)));
-      }
-    }
-
-  // Renumber in Hilbert-curve order (locality for the users of the mesh).
-  std::vector<std::size_t> order(points.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  using Hilbert_traits = CGAL::Spatial_sort_traits_adapter_3<K, CGAL::Pointer_property_map<Point>::type>;
-  CGAL::hilbert_sort(order.begin(), order.end(), Hilbert_traits(CGAL::make_property_map(points)));
-  std::vector<std::size_t> new_index(points.size());
-  for (std::size_t i = 0; i < order.size(); ++i) new_index[order[i]] = i;
-  const auto index_of = [&](Vertex_handle v) { return new_index[first_index.find(v)->second]; };
+  const Complex_vertices<C3t3> vertices(c3t3);
+  const auto index_of = [&](Vertex_handle v) { return vertices.index_of(v); };
 
   IO::Medit_mesh m;
-  m.vertices.resize(points.size());
-  m.vertex_references.resize(points.size());
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const Point& p = points[order[i]];
+  m.vertices.resize(vertices.points.size());
+  m.vertex_references.resize(vertices.points.size());
+  for (std::size_t i = 0; i < vertices.order.size(); ++i) {
+    const Point& p = vertices.points[vertices.order[i]];
     m.vertices[i] = {p.x(), p.y(), p.z()};
-    const int dimension = c3t3.in_dimension(handles[order[i]]);
+    const int dimension = c3t3.in_dimension(vertices.handles[vertices.order[i]]);
     m.vertex_references[i] = dimension >= 0 && dimension <= 3 ? dimension : 3;
   }
 
@@ -276,17 +306,7 @@ IO::Medit_mesh to_medit_mesh(const C3t3& c3t3) {
   sort_records(tets, m.tetrahedra, m.tetrahedron_references);
   sort_records(triangles, m.triangles, m.triangle_references);
 
-  // Protected sharp edges.
-  std::vector<std::pair<std::array<std::size_t, 2>, int>> edges;
-  for (auto e = c3t3.edges_in_complex_begin(); e != c3t3.edges_in_complex_end(); ++e) {
-    const auto a = first_index.find(e->first->vertex(e->second));
-    const auto b = first_index.find(e->first->vertex(e->third));
-    if (a == first_index.end() || b == first_index.end()) continue;
-    const std::size_t i = new_index[a->second], j = new_index[b->second];
-    edges.emplace_back(std::array<std::size_t, 2>{std::min(i, j), std::max(i, j)},
-                       static_cast<int>(c3t3.curve_index(*e)));
-  }
-  sort_records(edges, m.edges, m.edge_references);
+  add_complex_edges(c3t3, vertices, m);
   return m;
 }
 
