@@ -20,6 +20,8 @@
 #include <CGAL_ext/internal/lbfgs_on_rotations.h>
 #include <CGAL_ext/internal/preconditioned_conjugate_gradient.h>
 
+#include <CGAL/Real_timer.h>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -27,7 +29,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -196,29 +197,38 @@ public:
   }
 
   /// The statistics of the last `compute()`.
+  /// \returns the statistics (their energy and alignment figures refreshed by
+  ///          `update_statistics()`)
   const Frame_field_statistics& statistics() const { return stats_; }
 
   /// The number of tetrahedra (frames).
+  /// \returns the number of tetrahedra, indexed `0..size()-1`
   std::size_t size() const { return e_.cells.size(); }
   /// The metric field.
+  /// \returns the metric field given to the constructor
   const Metric_field& metric_field() const { return *field_; }
   /// The cell of tetrahedron `i`.
   /// \param i a tetrahedron index
+  /// \returns the domain cell of index `i`
   Cell_handle cell(std::size_t i) const { return e_.cells[i]; }
   /// The tetrahedron index of a domain cell, or -1.
   /// \param c a cell
+  /// \returns the index in `0..size()-1`, or -1 outside the domain
   std::int64_t index(Cell_handle c) const { return get(cim_, c); }
   /// The 0-based index of a vertex.
   /// \param v a finite vertex
+  /// \returns the index, from the vertex index map
   std::size_t vertex_index(Vertex_handle v) const { return get(vim_, v); }
 
   /// The rotation `R_i`, as `canonicalize_frame()` (a deterministic
   /// representative of `{R_i G}`).
   /// \param i a tetrahedron index
+  /// \returns the canonical rotation matrix
   Eigen::Matrix3d rotation(std::size_t i) const { return canonicalize_frame(q_[i].toRotationMatrix()); }
   /// The frame `F_i = A_i^{-1} R_i`: columns are the three hex edge vectors,
   /// of unit length in the metric at the centroid.
   /// \param i a tetrahedron index
+  /// \returns `F_i` (3x3, column `k` the `k`-th hex edge vector)
   Eigen::Matrix3d frame(std::size_t i) const { return e_.sqrt_metric[i].inverse() * rotation(i); }
   /// The parameter gradients `A_i R_i = F_i^{-T}`: column `k` is the
   /// gradient that the `k`-th parameter of an integer-grid map should have
@@ -227,25 +237,31 @@ public:
   /// unit length across that direction; for `g = I / h^2` it is `1 / h`.
   /// This is what CubeCover's `.fra` file holds.
   /// \param i a tetrahedron index
+  /// \returns `A_i R_i` (3x3, column `k` the gradient of parameter `k`)
   Eigen::Matrix3d parameter_gradients(std::size_t i) const { return e_.sqrt_metric[i] * rotation(i); }
   /// `A = g^{1/2}` at the centroid of tetrahedron `i`.
   /// \param i a tetrahedron index
+  /// \returns `A_i` (3x3, symmetric positive definite)
   const Eigen::Matrix3d& sqrt_metric(std::size_t i) const { return e_.sqrt_metric[i]; }
   /// The SH vector `s_i = D(R_i) s0` of tetrahedron `i`.
   /// \param i a tetrahedron index
+  /// \returns the band-4 SH 9-vector `s_i`
   const Sh_vector& sh(std::size_t i) const { return s_[i]; }
   /// The centroid of tetrahedron `i`.
   /// \param i a tetrahedron index
+  /// \returns the centroid's coordinates
   const Eigen::Vector3d& centroid(std::size_t i) const { return e_.centroid[i]; }
   /// The neighbour of tetrahedron `i` across its facet `f` (opposite
   /// `cell(i)->vertex(f)`), or -1 on the boundary.
   /// \param i a tetrahedron index
   /// \param f a facet index in 0..3
+  /// \returns the neighbour's tetrahedron index, or -1
   std::int64_t neighbor(std::size_t i, int f) const { return e_.links[i].nb[f]; }
   /// The transport `T(j->i)` from the neighbour `j = neighbor(i, f)` into
   /// tetrahedron `i` (identity on the boundary).
   /// \param i a tetrahedron index
   /// \param f a facet index in 0..3
+  /// \returns the 3x3 rotation `T(j->i)`
   Eigen::Matrix3d transport_into(std::size_t i, int f) const {
     return e_.links[i].identity[f] ? Eigen::Matrix3d::Identity() : e_.links[i].T_in[f].toRotationMatrix();
   }
@@ -253,20 +269,24 @@ public:
   /// `sum_f w_f |s_i - D(T(j->i)) s_j|^2 / 2` over its interior faces, divided
   /// by its volume (so that it sums, times the volumes, to the energy).
   /// \param i a tetrahedron index
+  /// \returns the density, an energy per unit volume
   double energy_density(std::size_t i) const {
     return std::ldexp(0.5 * e_.local_smoothness(i, s_) / e_.volume[i], e_.weight_exponent);
   }
   /// The boundary faces, in tetrahedron order.
+  /// \returns one `Frame_field_boundary_face` per boundary face of the domain
   const std::vector<Boundary_face>& boundary_faces() const { return e_.boundary; }
   /// The alignment error of a boundary face in degrees: the angle between
   /// `d` and the nearest of `+-R e_k`.
   /// \param b a boundary face
+  /// \returns the angle in degrees, at most `acos(1 / sqrt(3))` (about 54.7)
   double alignment_error_deg(const Boundary_face& b) const {
     const Eigen::Matrix3d R = q_[b.tet].toRotationMatrix();
     const double c = (R.transpose() * b.direction).cwiseAbs().maxCoeff();
     return std::acos(std::min(1.0, c)) * 180 / M_PI;
   }
   /// The smoothness energy `sum_f w_f |s_j - D(T(i->j)) s_i|^2` of the current frames.
+  /// \returns `E`, as `Frame_field_statistics::smoothness_energy` reports it
   double smoothness_energy() const {
     const double internal_units = 0.5 * internal::deterministic_sum(size(), [&](std::size_t b, std::size_t e) {
                                     double s = 0;
@@ -317,6 +337,7 @@ public:
   /// The rotation `R_i` as the unit quaternion the optimiser holds (any
   /// representative of `{R_i G}`; `rotation()` gives the canonical one).
   /// \param i a tetrahedron index
+  /// \returns the unit quaternion of `R_i`
   const Eigen::Quaterniond& rotation_quaternion(std::size_t i) const { return q_[i]; }
 
   /// Sets the rotation of one tetrahedron (e.g. to restore a value of
@@ -359,12 +380,13 @@ private:
     return cells;
   }
 
+  // Wall-clock seconds per stage.
   struct Timer {
-    std::chrono::steady_clock::time_point last = std::chrono::steady_clock::now();
+    CGAL::Real_timer timer;
+    Timer() { timer.start(); }
     double lap() {
-      const auto now = std::chrono::steady_clock::now();
-      const double s = std::chrono::duration<double>(now - last).count();
-      last = now;
+      const double s = timer.time();
+      timer.reset();
       return s;
     }
   };

@@ -10,10 +10,11 @@
 #include <CGAL_ext/Frame_field_matchings_3.h>
 #include <CGAL_ext/Frame_field_singularities_3.h>
 
+#include <CGAL/Real_timer.h>
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
-#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -39,15 +40,21 @@ struct Singularity_repair_options {
 /// \ingroup PkgCGALExtFrames
 /// What `repair_singularities()` did.
 struct Singularity_repair_report {
+  /** @{ */
   /// Non-meshable singular edges before and after.
   std::size_t non_meshable_before = 0, non_meshable_after = 0;
+  /** @} */
+  /** @{ */
   /// Rounds run, batches of regions re-optimised together, regions
   /// re-optimised, and regions kept (fewer non-meshable edges than before).
   std::size_t rounds = 0, batches = 0, regions_tried = 0, regions_accepted = 0;
+  /** @} */
   /// Tetrahedra in the regions kept.
   std::size_t tets_changed = 0;
+  /** @{ */
   /// Smoothness energy before and after.
   double energy_before = 0, energy_after = 0;
+  /** @} */
   /// Duration in seconds.
   double seconds = 0;
 };
@@ -324,7 +331,8 @@ private:
 /// \returns what was done
 template <class Frame_field>
 Singularity_repair_report repair_singularities(Frame_field& ff, const Singularity_repair_options& options = {}) {
-  const auto start = std::chrono::steady_clock::now();
+  CGAL::Real_timer timer;
+  timer.start();
   Singularity_repair_report report;
   report.energy_before = report.energy_after = ff.smoothness_energy();
   internal::Singularity_repairer<Frame_field> repairer(ff, report);
@@ -349,7 +357,7 @@ Singularity_repair_report repair_singularities(Frame_field& ff, const Singularit
   }
   ff.update_statistics();
   report.energy_after = ff.smoothness_energy();
-  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  report.seconds = timer.time();
   return report;
 }
 

@@ -6,7 +6,6 @@
 #ifndef CGAL_EXT_CLI_COMMON_H
 #define CGAL_EXT_CLI_COMMON_H
 
-#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
@@ -14,6 +13,8 @@
 #include <memory>
 
 #include <CGAL_ext/internal/json_text.h>
+
+#include <CGAL/Real_timer.h>
 
 #include <tbb/global_control.h>
 #include <optional>
@@ -99,23 +100,22 @@ private:
   bool help_requested_ = false;
 };
 
-/// Prints "[stage] name  1.23 s" lines on stderr, and a total at the end.
+/// Prints "[stage] name  1.23 s" lines on stderr, and a total at the end
+/// (wall-clock time, CGAL::Real_timer).
 class Stage_timer {
 public:
-  using Clock = std::chrono::steady_clock;
-  Stage_timer() : start_(Clock::now()), last_(start_) {}
+  Stage_timer() {
+    total_.start();
+    lap_.start();
+  }
   void stage(const char* name) {
-    const auto now = Clock::now();
-    std::fprintf(stderr, "[stage] %-22s %8.3f s\n", name, std::chrono::duration<double>(now - last_).count());
-    last_ = now;
+    std::fprintf(stderr, "[stage] %-22s %8.3f s\n", name, lap_.time());
+    lap_.reset();
   }
-  void summary() const {
-    std::fprintf(stderr, "[done]  %-22s %8.3f s\n", "total",
-                 std::chrono::duration<double>(Clock::now() - start_).count());
-  }
+  void summary() const { std::fprintf(stderr, "[done]  %-22s %8.3f s\n", "total", total_.time()); }
 
 private:
-  Clock::time_point start_, last_;
+  CGAL::Real_timer total_, lap_;
 };
 
 using internal::json_escape;

@@ -17,7 +17,6 @@
 #include <CGAL/Real_timer.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -230,11 +229,11 @@ int command_generate(const std::vector<std::string>& args) {
 
   r.options.progress = stage;
   // Long iterations report at most once per second.
-  auto last_report = std::chrono::steady_clock::now();
+  CGAL::Real_timer since_report;
+  since_report.start();
   r.options.iteration_progress = [&](const std::string& name, int iteration, double measure) {
-    const auto now = std::chrono::steady_clock::now();
-    if (std::chrono::duration<double>(now - last_report).count() < 1) return;
-    last_report = now;
+    if (since_report.time() < 1) return;
+    since_report.reset();
     std::fprintf(stderr, "[progress] %s: iteration %d, %s %.4g\n", name.c_str(), iteration,
                  name == "refinement" ? "energy" : "relative residual", measure);
   };
