@@ -5,9 +5,10 @@
 set -euo pipefail
 
 # clang and libclang-rt-14-dev: the sanitized build and the libFuzzer
-# harnesses (scripts/test_sanitize.sh, doc/robustness.md).
+# harnesses (scripts/test_sanitize.sh, doc/robustness.md). doxygen: the API
+# documentation, checked without warnings by CI (scripts/check_docs.sh).
 packages=(build-essential cmake libcgal-dev libeigen3-dev libboost-dev catch2 libtbb-dev libgmp-dev libmpfr-dev libmuparser-dev python3
-          clang libclang-rt-14-dev)
+          clang libclang-rt-14-dev doxygen)
 
 missing=()
 for p in "${packages[@]}"; do

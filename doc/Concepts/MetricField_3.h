@@ -32,26 +32,31 @@ public:
   typedef unspecified_type Point_3;
 
   /// The triangulation the metric lives on; it outlives the field.
+  /// \returns the triangulation
   const Triangulation_3& triangulation() const;
 
   /// `A = g^{1/2}` at a finite vertex of the domain (symmetric positive definite).
   /// \param v the vertex
+  /// \returns `A` at `v` (3x3)
   Eigen::Matrix3d sqrt_metric(Vertex_handle v) const;
 
   /// `A` at a point of a domain cell (inside it or on its boundary), the
   /// cell's interpolation of its vertices' values.
   /// \param c the cell
   /// \param p the point
+  /// \returns `A(p)` (3x3, symmetric)
   Eigen::Matrix3d A_at(Cell_handle c, const Point_3& p) const;
 
   /// The curl of `A` in a domain cell (column `i` is the curl of column `i`
   /// of `A`), constant in the cell.
   /// \param c the cell
+  /// \returns the 3x3 matrix of the curls of the columns of `A`
   Eigen::Matrix3d curl(Cell_handle c) const;
 
   /// The barycentric coordinates of a point in a cell, in the order of the
   /// cell's vertices (summing to 1).
   /// \param c the cell
   /// \param p the point
+  /// \returns the four coordinates, summing to 1
   Eigen::Vector4d barycentric_coordinates(Cell_handle c, const Point_3& p) const;
 };

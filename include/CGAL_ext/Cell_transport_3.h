@@ -194,9 +194,9 @@ Eigen::Matrix3d magnus4_step(Generator& u, double t, double h, Transport_result&
 } // namespace internal
 
 /// \ingroup PkgCGALExtTransport
-/// Integrates `R'(t) = [u(t)]_x R(t)`, `R(0) = I`, over `t` in `[0, 1]` and
+/// Integrates ``R'(t) = [u(t)]_x R(t)``, `R(0) = I`, over `t` in `[0, 1]` and
 /// returns `R(1)`: the transport along a path whose rotation generator is
-/// `u(t) = W(x(t))^T x'(t)` (doc/math.md section 4).
+/// ``u(t) = W(x(t))^T x'(t)`` (doc/math.md section 4).
 ///
 /// - `Transport_scheme::trapezoid`: the thesis scheme. The piece `[t0, t1]`
 ///   gives `exp([(u(t0) + u(t1)) (t1 - t0) / 2]_x)`; it is compared with the

@@ -54,7 +54,7 @@ inline Eigen::Matrix<double, 9, 9> connection_system_matrix(const Eigen::Matrix3
 /// `W` is the unique solution of `M(A) vec(W) = vec(curl A)`. Column `W_k`
 /// holds the (dx, dy, dz) coefficients of the k-th of
 /// `(omega_23, omega_31, omega_12)`, so that along a path the rotation
-/// generator is `u = W^T x'`.
+/// generator is ``u = W^T x'``.
 ///
 /// Closed form (derived with the Koszul formula in the coframe `theta = A dp`,
 /// whose dual frame is `A^{-1}`; checked against the 9x9 solve in the tests):

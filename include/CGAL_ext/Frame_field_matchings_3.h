@@ -30,8 +30,10 @@ namespace CGAL_ext {
 struct Face_angle_statistics {
   /// The number of interior faces.
   std::size_t faces = 0;
+  /** @{ */
   /// The mean, median and largest angle, in degrees.
   double mean_deg = 0, median_deg = 0, max_deg = 0;
+  /** @} */
 };
 
 /// \ingroup PkgCGALExtFrames
@@ -79,24 +81,28 @@ public:
   }
 
   /// The number of tetrahedra.
+  /// \returns the number of tetrahedra of the frame field
   std::size_t size() const { return index_.size(); }
 
   /// The index in `octahedral_group()` of the matching from tetrahedron `i`
   /// to its neighbour across local facet `f`, or -1 on the boundary.
   /// \param i a tetrahedron index
   /// \param f a local facet index in 0..3
+  /// \returns an index in 0..23, or -1
   int index(std::size_t i, int f) const { return index_[i][f]; }
 
   /// The matching from tetrahedron `i` across local facet `f` (an exact
   /// signed permutation matrix); the identity on the boundary.
   /// \param i a tetrahedron index
   /// \param f a local facet index in 0..3
+  /// \returns the 3x3 matrix `G`, an element of `octahedral_group()`
   const Eigen::Matrix3d& matching(std::size_t i, int f) const {
     return octahedral_group()[index_[i][f] < 0 ? 0 : index_[i][f]];
   }
 
   /// The rotation `R_i` the matchings were computed with (`ff.rotation(i)`).
   /// \param i a tetrahedron index
+  /// \returns the canonical rotation matrix `R_i`
   const Eigen::Matrix3d& rotation(std::size_t i) const { return rotation_[i]; }
 
   /// The angle, in degrees, between the frame of tetrahedron `i` carried
@@ -107,6 +113,7 @@ public:
   /// \param ff the frame field the matchings were computed from
   /// \param i a tetrahedron index
   /// \param f a local facet index in 0..3
+  /// \returns the angle in degrees; 0 on the boundary
   double face_angle_deg(const Frame_field& ff, std::size_t i, int f) const {
     const std::int64_t j = ff.neighbor(i, f);
     if (j < 0) return 0;
@@ -121,6 +128,7 @@ public:
   /// A field that concentrates its rotation near its singular curves has a
   /// median far below its mean.
   /// \param ff the frame field the matchings were computed from
+  /// \returns the number of interior faces and the angles in degrees
   Face_angle_statistics face_angle_statistics(const Frame_field& ff) const {
     std::vector<double> angles;
     for (std::size_t i = 0; i < size(); ++i)
@@ -145,6 +153,7 @@ public:
   /// `ff.parameter_gradients(i)` (or `ff.frame(i)`) in a `.fra` file, vector
   /// `k` of a tetrahedron is column `k` of that matrix.
   /// \param ff the frame field the matchings were computed from
+  /// \returns the `.perm` file's content, for `IO::write_perm()`
   IO::Perm_file perm_file(const Frame_field& ff) const {
     IO::Perm_file out;
     out.tets = size();
@@ -162,6 +171,7 @@ public:
   /// of the first tetrahedron times `sign(p[k])` is vector `|p[k]| - 1` of
   /// the second.
   /// \param group_index an index in `octahedral_group()`
+  /// \returns `p`; the absolute values of its entries are a permutation of 1, 2, 3
   static std::array<int, 3> signed_permutation(int group_index) {
     const Eigen::Matrix3d& G = octahedral_group()[group_index];
     std::array<int, 3> p{};
@@ -173,6 +183,7 @@ public:
 
   /// The index in `octahedral_group()` of the inverse of element `k`.
   /// \param k an index in `octahedral_group()`
+  /// \returns the index of the transpose of element `k`, in 0..23
   static int inverse_index(int k) {
     static const std::array<int, 24> table = [] {
       std::array<int, 24> t{};

@@ -75,13 +75,19 @@ struct Frame_field_options {
 struct Frame_field_statistics {
   /// Tetrahedra (frames).
   std::size_t tets = 0;
+  /** @{ */
   /// Interior faces (smoothness terms) and boundary faces (alignment terms).
   std::size_t interior_faces = 0, boundary_faces = 0;
+  /** @} */
+  /** @{ */
   /// Boundary tetrahedra with one hard axis, and with two (a frame fixed by
   /// two non-parallel boundary faces, e.g. along a sharp edge).
   std::size_t hard_one_axis = 0, hard_two_axes = 0;
+  /** @} */
+  /** @{ */
   /// Feature edges, vertices on feature curves and corners (`Sharp_features_3`).
   std::size_t feature_edges = 0, feature_curve_vertices = 0, feature_corners = 0;
+  /** @} */
   /// Tetrahedra whose hard axes come from a feature: a corner's frame or a
   /// feature edge's tangent.
   std::size_t feature_tets = 0;
@@ -89,36 +95,50 @@ struct Frame_field_statistics {
   std::size_t identity_transports = 0;
   /// Largest transport angle over the faces, in radians.
   double max_transport_angle = 0;
+  /** @{ */
   /// Conjugate-gradient iterations of the initialisation and its final relative residual.
   int linear_iterations = 0;
   double linear_residual = 0;
+  /** @} */
+  /** @{ */
   /// Conjugate-gradient iterations and unknowns of the coarse level (0 without one).
   int coarse_iterations = 0;
   std::size_t coarse_unknowns = 0;
+  /** @} */
   /// Tetrahedra whose initial SH vector was (near) zero and got the identity.
   std::size_t degenerate_projections = 0;
+  /** @{ */
   /// L-BFGS iterations and energy evaluations.
   int refinement_iterations = 0, energy_evaluations = 0;
+  /** @} */
+  /** @{ */
   /// Whether an iteration bound stopped a stage (`max_linear_iterations`
   /// before the CG residual reached `linear_tolerance`, or
   /// `max_refinement_iterations` while L-BFGS still made progress): reached
   /// only on pathological input, and said in the stage's progress line.
   bool linear_iteration_limit_reached = false, refinement_iteration_limit_reached = false;
+  /** @} */
+  /** @{ */
   /// Smoothness energy `sum_f w_f |s_j - D(T_ij) s_i|^2` after the
   /// projection and at the end.
   double projected_energy = 0, smoothness_energy = 0;
+  /** @} */
   /// The sum of the face weights (the energy of the worst field is about
   /// twice this; `smoothness_energy / total_face_weight` is a mean).
   double total_face_weight = 0;
+  /** @{ */
   /// Boundary alignment: angle between `A^{-1} n` and the nearest frame
   /// vector `F e_k`, in degrees, over the boundary faces.
   double boundary_error_mean_deg = 0, boundary_error_max_deg = 0;
+  /** @} */
   /// `max |F^T g F - I|` over the tetrahedra (entry-wise), `g` at the centroid.
   double max_orthonormality_error = 0;
+  /** @{ */
   /// Seconds per stage: set-up (geometry, weights), face transports, linear
   /// initialisation, projection, refinement.
   double seconds_setup = 0, seconds_transports = 0, seconds_linear = 0, seconds_projection = 0,
          seconds_refinement = 0;
+  /** @} */
 };
 
 /// \ingroup PkgCGALExtFrames

@@ -82,6 +82,7 @@ enum class Pipeline_input_kind {
 /// \ingroup PkgCGALExtPipeline
 /// The kind of `input`, from its `builtin:` prefix or its extension.
 /// \param input a file name or `builtin:NAME`
+/// \returns the kind; `unknown` for any other name
 Pipeline_input_kind pipeline_input_kind(const std::string& input);
 
 /// \ingroup PkgCGALExtPipeline
@@ -183,6 +184,7 @@ struct Pipeline_frame_field {
 ///   frame field's stages
 /// \param repair the repair's options, or none for no repair
 /// \param stage if set, called after the stages `repair` and `singularities`
+/// \returns the frame field, its repair report, matchings and singularities
 Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric, const Frame_field_options& options,
                                                    const std::optional<Singularity_repair_options>& repair,
                                                    const Pipeline_stage_callback& stage = {});
@@ -190,6 +192,7 @@ Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric
 /// \ingroup PkgCGALExtPipeline
 /// The names of the files that `write_pipeline_outputs()` and
 /// `write_pipeline_report()` write into the output directory.
+/// \returns the file names, `report.json` last
 const std::vector<std::string>& pipeline_output_names();
 
 /// \ingroup PkgCGALExtPipeline
@@ -230,6 +233,11 @@ struct Pipeline_report_context {
 /// The report of `report.json` (format in `output_files.md`): counts, hex
 /// size, expected hexes, singular curves and nodes, non-meshable edges,
 /// energies, face angles, alignment, repair and timings.
+/// \param mesh the tet mesh (its vertex count is reported)
+/// \param metric the metric field and its scaling
+/// \param frames the frame field and its singularities
+/// \param context the input, the options and the stages' times
+/// \returns the JSON text, ending with a newline
 std::string pipeline_report_json(const Pipeline_tet_mesh& mesh, const Pipeline_metric& metric,
                                  const Pipeline_frame_field& frames, const Pipeline_report_context& context);
 
@@ -244,6 +252,11 @@ std::string write_pipeline_report(const std::string& directory, const std::strin
 /// \ingroup PkgCGALExtPipeline
 /// The summary of the run as the CLI prints it at the end: a few aligned
 /// lines, and the first five non-meshable edges.
+/// \param mesh the tet mesh
+/// \param metric the metric field and its scaling
+/// \param frames the frame field and its singularities
+/// \param context the input, the options and the stages' times
+/// \returns the text, starting with an empty line and ending with a newline
 std::string pipeline_summary_text(const Pipeline_tet_mesh& mesh, const Pipeline_metric& metric,
                                   const Pipeline_frame_field& frames, const Pipeline_report_context& context);
 

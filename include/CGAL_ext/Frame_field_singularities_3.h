@@ -41,6 +41,7 @@ enum class Singularity_type {
 /// \ingroup PkgCGALExtFrames
 /// The name used in outputs: "regular", "+1/4", "-1/4", "1/4 across", "1/2", "1/3".
 /// \param t the type
+/// \returns the name, a static string
 inline const char* singularity_type_name(Singularity_type t) {
   switch (t) {
     case Singularity_type::regular: return "regular";
@@ -56,6 +57,7 @@ inline const char* singularity_type_name(Singularity_type t) {
 /// Whether a singular edge of this type can be an edge of a hexahedral mesh
 /// (a quarter turn about the edge: `plus_quarter` or `minus_quarter`).
 /// \param t the type
+/// \returns true for `plus_quarter` and `minus_quarter`
 inline bool is_meshable(Singularity_type t) {
   return t == Singularity_type::plus_quarter || t == Singularity_type::minus_quarter;
 }
@@ -397,6 +399,7 @@ struct Singular_node {
 /// \ingroup PkgCGALExtFrames
 /// The name of a node kind in outputs: "boundary end", "interior end", "junction".
 /// \param k the kind
+/// \returns the name, a static string
 inline const char* singular_node_kind_name(Singular_node::Kind k) {
   return k == Singular_node::Kind::boundary_end ? "boundary end"
          : k == Singular_node::Kind::interior_end ? "interior end"
@@ -416,8 +419,10 @@ struct Singular_curve {
   bool closed = false;
   /// Its Euclidean length.
   double length = 0;
+  /** @{ */
   /// The numbers of its edges of each kind.
   std::size_t plus_quarter_edges = 0, minus_quarter_edges = 0, non_meshable_edges = 0;
+  /** @} */
 };
 
 /// \ingroup PkgCGALExtFrames
@@ -427,8 +432,10 @@ struct Singularity_graph {
   std::vector<Singular_curve> curves;
   /// The nodes, in increasing vertex order.
   std::vector<Singular_node> nodes;
+  /** @{ */
   /// Counts: curves that are closed loops, nodes of each kind.
   std::size_t closed_curves = 0, boundary_ends = 0, interior_ends = 0, junctions = 0;
+  /** @} */
 };
 
 /// \ingroup PkgCGALExtFrames
@@ -444,6 +451,7 @@ struct Singularity_graph {
 ///         (which find its boundary faces)
 /// \param ff the frame field (for the boundary and the positions)
 /// \param edges its singular edges, as `singular_edges()` returns them
+/// \returns the curves, the nodes and their counts
 template <class Frame_field>
 Singularity_graph singularity_graph(const Frame_field& ff, const std::vector<Singular_edge>& edges) {
   using Vertex_handle = typename Frame_field::Vertex_handle;

@@ -34,12 +34,16 @@ public:
         file_(std::move(file)), line_(line), element_(std::move(element)), problem_(std::move(problem)) {}
 
   /// The file name, or empty.
+  /// \returns the file name as given to the constructor (unlike `what()`, not escaped)
   const std::string& file() const noexcept { return file_; }
   /// The 1-based line number, or 0.
+  /// \returns the line in `file()`, from 1; 0 when not applicable
   std::size_t line() const noexcept { return line_; }
   /// The element concerned, or empty.
+  /// \returns the element as given to the constructor (unlike `what()`, not escaped)
   const std::string& element() const noexcept { return element_; }
   /// The problem alone, without location.
+  /// \returns the problem as given to the constructor (unlike `what()`, not escaped)
   const std::string& problem() const noexcept { return problem_; }
 
   /// Longest part of a token that `quote()` shows.
@@ -49,8 +53,9 @@ public:
   /// bytes that are not printable ASCII written `\xHH`, and cut after
   /// `quoted_token_length` characters, then followed by its length, so that
   /// a 10 MB token gives a short message, e.g.
-  /// `'1111111111111111111111111111111111111111...' (10000000 characters)`.
+  /// ``'1111111111111111111111111111111111111111...' (10000000 characters)``.
   /// \param token the token, as read
+  /// \returns the quoted token, with its length if it was cut
   static std::string quote(std::string_view token) {
     std::string s = "'" + escaped(token.substr(0, quoted_token_length), true) + "'";
     if (token.size() > quoted_token_length)
@@ -97,6 +102,7 @@ private:
 /// A number as messages and progress lines write it: `%.*g`, short.
 /// \param x the number
 /// \param significant_digits the significant digits (4 for figures, 6 for parameters)
+/// \returns `x` printed with `%.*g`, e.g. `0.0994` or `1.235e+06`
 inline std::string format_number(double x, int significant_digits = 4) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.*g", significant_digits, x);

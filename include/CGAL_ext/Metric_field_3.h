@@ -173,14 +173,17 @@ public:
   }
 
   /// The triangulation.
+  /// \returns the triangulation given to the constructor
   const Triangulation& triangulation() const { return *tr_; }
 
   /// The square root `A = g^{1/2}` at a vertex (symmetric positive definite).
   /// \param v a finite vertex
+  /// \returns `A` at `v` (3x3)
   const Eigen::Matrix3d& sqrt_metric(Vertex_handle v) const { return sqrt_[checked_index(v)]; }
 
   /// The metric `g = A A` at a vertex.
   /// \param v a finite vertex
+  /// \returns `g` at `v` (3x3, symmetric positive definite)
   Eigen::Matrix3d metric(Vertex_handle v) const {
     const Eigen::Matrix3d& A = sqrt_metric(v);
     return A * A;
@@ -208,6 +211,7 @@ public:
   /// `c->vertex(0..3)`. They sum to 1; they are all in `[0, 1]` iff `p` is in `c`.
   /// \param c a cell of the domain
   /// \param p a point
+  /// \returns the four coordinates, summing to 1
   Eigen::Vector4d barycentric_coordinates(Cell_handle c, const Point_3& p) const {
     const Cell_data& d = data(c);
     const Eigen::Vector3d l = d.inverse_edges * (internal::to_eigen_vector(p) - d.p0);
@@ -233,6 +237,7 @@ public:
   /// `(d_y A(2,i) - d_z A(1,i), d_z A(0,i) - d_x A(2,i), d_x A(1,i) - d_y A(0,i))`.
   /// Computed on first use and cached.
   /// \param c a cell of the domain
+  /// \returns the 3x3 matrix of the curls of the columns of `A`
   /// \throws std::invalid_argument if `c` is not a cell of the domain
   /// \throws Input_error naming the tetrahedron if it is too flat for
   ///         double precision (its edge matrix is singular once rounded);
@@ -260,6 +265,7 @@ public:
   }
 
   /// Number of cells of the domain.
+  /// \returns the number of finite cells with a non-negative index
   std::size_t number_of_domain_cells() const { return domain_cells_.size(); }
 
   /// The volume of the cell `c` measured in the metric, `int_c det A dV`.
@@ -268,6 +274,7 @@ public:
   /// gives it exactly up to rounding. With unit length in the metric one
   /// hexahedron edge, it is the number of hexahedra the cell asks for.
   /// \param c a cell of the domain
+  /// \returns the metric volume of `c`
   double metric_volume(Cell_handle c) const {
     std::array<Eigen::Matrix3d, 4> A;
     Eigen::Matrix3d E;
@@ -285,6 +292,7 @@ public:
   /// The volume of the domain measured in the metric, the sum of
   /// `metric_volume(c)` over its cells (in parallel, added in a fixed order:
   /// the same bits whatever the number of threads).
+  /// \returns the metric volume of the domain
   double metric_volume() const {
     std::vector<double> v(domain_cells_.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, v.size()), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -308,6 +316,7 @@ public:
     /// \param m the map \param v a finite vertex
     friend reference get(const Sqrt_metric_map& m, key_type v) { return m.f_->sqrt_metric(v); }
     /// \param v a finite vertex
+    /// \returns `A` at `v`
     reference operator[](key_type v) const { return f_->sqrt_metric(v); }
 
   private:
@@ -336,8 +345,10 @@ public:
   };
 
   /// The square roots as a property map.
+  /// \returns a map that reads this field, which must outlive it
   Sqrt_metric_map sqrt_metric_map() const { return Sqrt_metric_map(*this); }
   /// The metrics as a read-write property map.
+  /// \returns a map that reads and writes this field, which must outlive it
   Metric_map metric_map() { return Metric_map(*this); }
 
 private:

@@ -157,9 +157,11 @@ public:
       : field_(&field), walk_(field.triangulation(), std::move(in_domain)) {}
 
   /// The metric field.
+  /// \returns the metric field given to the constructor
   const Metric_field& field() const { return *field_; }
 
   /// The walk used to cut segments into pieces.
+  /// \returns the walk, on the field's triangulation and the domain predicate
   const Walk& walk() const { return walk_; }
 
   /// `T(a->b)` along the segment `[a, b]`.
@@ -214,6 +216,7 @@ public:
   /// \param b the end point
   /// \param opt the scheme and the tolerance in radians for the whole segment
   /// \param hint a domain cell near `a`, or a null handle
+  /// \returns `transport(a, b, opt, hint)`
   Metric_transport_result operator()(const Point_3& a, const Point_3& b, const Transport_options& opt = {},
                                      Cell_handle hint = Cell_handle()) const {
     return transport(a, b, opt, hint);
@@ -284,6 +287,7 @@ public:
   /// rounding), so that every cell around the simplex gives the same `A`.
   /// \param piece a piece of dimension 1, 2 or 3 from the walk
   /// \param x a point of the piece
+  /// \returns `A` at `x` (3x3, symmetric)
   Eigen::Matrix3d piece_A(const Piece& piece, const Eigen::Vector3d& x) const {
     const Cell_handle c = piece.cell;
     const Point_3 p(x(0), x(1), x(2));

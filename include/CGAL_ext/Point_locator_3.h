@@ -44,6 +44,7 @@ public:
   /// Locates `x`.
   /// \param x the point
   /// \param hint a cell near `x` (ignored if null or not a domain cell)
+  /// \returns the location of `x` (see `Location`)
   /// \throws std::invalid_argument if a coordinate of `x` is not finite
   Location operator()(const Point& x, Cell_handle hint = Cell_handle()) const { return walk_.locate(x, hint); }
 

@@ -355,6 +355,7 @@ public:
   /// `x` is outside the closed domain.
   /// \param x the point
   /// \param hint a cell near `x` (ignored if null or not a domain cell)
+  /// \returns the simplex's dimension (-1 for a gap), vertices and a domain cell incident to it
   /// \throws std::invalid_argument if a coordinate is not finite
   Piece locate(const Point& x, Cell_handle hint = Cell_handle()) const {
     check_finite(x, "locate");
@@ -363,6 +364,7 @@ public:
 
   /// Whether `c` is a cell of the domain (finite and accepted by the predicate).
   /// \param c the cell
+  /// \returns true for a finite cell that the predicate accepts; false for a null handle
   bool is_domain_cell(Cell_handle c) const {
     if (c == Cell_handle() || tr_->is_infinite(c)) return false;
     if (std::is_same<Domain_predicate, Is_finite_cell<Tr>>::value) return true; // already decided

@@ -226,12 +226,15 @@ public:
   }
 
   /// The feature angle in degrees.
+  /// \returns the angle given to the constructor, in `[0, 180]`
   double feature_angle_deg() const { return angle_deg_; }
   /// The feature edges, sorted by (source, target).
+  /// \returns the feature edges, each with `source < target`
   const std::vector<Feature_edge>& feature_edges() const { return edges_; }
   /// Whether the edge between two vertices is a feature edge.
   /// \param a a vertex index
   /// \param b a vertex index
+  /// \returns true if `(a, b)` or `(b, a)` is a feature edge
   bool is_feature_edge(std::size_t a, std::size_t b) const {
     if (a > b) std::swap(a, b);
     const auto it = std::lower_bound(edges_.begin(), edges_.end(), std::make_pair(a, b),
@@ -247,6 +250,7 @@ public:
   /// the next, where the edges' own directions jump.
   /// \param a a vertex index
   /// \param b a vertex index, `(a, b)` a feature edge
+  /// \returns the unit tangent, oriented from `a` to `b`
   Eigen::Vector3d edge_tangent(std::size_t a, std::size_t b) const {
     const Eigen::Vector3d chord =
         (internal::to_eigen_vector(vertices_[b]->point()) - internal::to_eigen_vector(vertices_[a]->point())).normalized();
@@ -263,23 +267,30 @@ public:
   }
   /// The kind of a vertex.
   /// \param v a vertex index
+  /// \returns the kind; `none` for an index beyond the vertices
   Feature_vertex_kind kind(std::size_t v) const { return v < kind_.size() ? kind_[v] : Feature_vertex_kind::none; }
   /// The unit tangent (Euclidean) of the feature curve at a `curve` vertex.
   /// \param v a vertex index of kind `curve`
+  /// \returns the unit tangent, in either orientation
   Eigen::Vector3d tangent(std::size_t v) const { return axes_[v].col(0); }
   /// The frame of a `corner` vertex: three Euclidean unit columns, the
   /// directions of the hex edges there (orthonormal in the metric at the
   /// vertex, up to their lengths).
   /// \param v a vertex index of kind `corner`
+  /// \returns the 3x3 matrix of the three directions
   const Eigen::Matrix3d& corner_axes(std::size_t v) const { return axes_[v]; }
   /// The number of vertices on feature curves (not corners).
+  /// \returns the number of vertices of kind `curve`
   std::size_t number_of_curve_vertices() const { return curve_vertices_; }
   /// The number of corners.
+  /// \returns the number of vertices of kind `corner`
   std::size_t number_of_corners() const { return corners_; }
   /// The number of edges sharper than the angle that were dropped as lone
   /// kinks (feature curves of fewer than 3 edges meeting no other feature).
+  /// \returns the number of dropped edges (not in `feature_edges()`)
   std::size_t number_of_dropped_edges() const { return dropped_; }
   /// The number of boundary facets.
+  /// \returns the number of facets between a domain cell and a cell outside it
   std::size_t number_of_boundary_facets() const { return facets_.size(); }
 
 private:

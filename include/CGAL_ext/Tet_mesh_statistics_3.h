@@ -72,6 +72,7 @@ double stat_dihedral_angle(const Point& p, const Point& q, const Point& r, const
 ///         true for the cells of the domain (it is never called on infinite cells)
 /// \param tr the triangulation, of dimension 3
 /// \param in_domain the domain predicate
+/// \returns the counts, bounding box, volume, mean edge length and dihedral angles of the domain
 template <class Triangulation, class Domain_predicate>
 Tet_mesh_statistics_3 compute_tet_mesh_statistics(const Triangulation& tr, Domain_predicate in_domain) {
   using Cell_handle = typename Triangulation::Cell_handle;

@@ -32,6 +32,7 @@ struct Tet_mesh_cell_info {
   /// The Medit reference of the tetrahedron (0 outside the domain).
   int reference = 0;
   /// Whether the cell belongs to the domain.
+  /// \returns true if `index >= 0`
   bool in_domain() const { return index >= 0; }
 };
 
@@ -69,6 +70,7 @@ using Tet_mesh_triangulation_3 = CGAL::Triangulation_3<
 struct Is_tet_mesh_domain_cell {
   /// \tparam Cell_handle a handle to a cell with `Tet_mesh_cell_info` info
   /// \param c the cell
+  /// \returns true if `c` is a cell of the domain (`c->info().in_domain()`)
   template <class Cell_handle>
   bool operator()(const Cell_handle& c) const { return c->info().in_domain(); }
 };
@@ -84,6 +86,7 @@ public:
   /// \param tr the triangulation whose finite cells form the domain
   explicit Is_finite_cell(const Triangulation& tr) : tr_(&tr) {}
   /// \param c the cell
+  /// \returns true if `c` is a finite cell of the triangulation
   bool operator()(typename Triangulation::Cell_handle c) const { return !tr_->is_infinite(c); }
 
 private:

@@ -92,6 +92,7 @@ constexpr double bytes_per_tetrahedron = 1600;
 
 /// \ingroup PkgCGALExtMesh
 /// The physical memory of this machine in bytes (0 if unknown).
+/// \returns the size of the physical memory in bytes, or 0
 double physical_memory_bytes();
 
 /// \ingroup PkgCGALExtMesh
@@ -103,8 +104,8 @@ struct Tetrahedralize_report {
   double size = 0;                    ///< the size used (`Tetrahedralize_options::size`, or the automatic one)
   double seconds = 0;                 ///< wall-clock time of the whole call, reading included
   /// A one-line description of the domain and of the sizes used, e.g.
-  /// `surface 'part.off' (1200 vertices, 2396 triangles); size 0.17, facet
-  /// distance 0.017; sharp edges protected (60 degrees)`. Every repair made
+  /// ``surface 'part.off' (1200 vertices, 2396 triangles); size 0.17, facet
+  /// distance 0.017; sharp edges protected (60 degrees)``. Every repair made
   /// to the input (orientation reversed, soup repaired, faces triangulated)
   /// is listed here after `repaired:`; nothing is ever repaired silently
   /// otherwise.

@@ -20,8 +20,10 @@ namespace IO {
 /// \ingroup PkgCGALExtIO
 /// The matching across one interior face, as a `.perm` line holds it.
 struct Perm_face {
+  /** @{ */
   /// The 0-based indices of the two tetrahedra sharing the face.
   std::size_t tet1 = 0, tet2 = 0;
+  /** @} */
   /// The signed, 1-based vector correspondence: vector `k` of `tet1` times
   /// `sign(p[k])` is vector `|p[k]| - 1` of `tet2` (vectors numbered from 0
   /// here, as in the `.fra` file's order).
