@@ -273,6 +273,32 @@ void print_row(const std::string& name, const char* variant, const Quality& q, d
                 q.mip_failed ? " (MIP)" : "");
 }
 
+// The three variants of one model: no repair, repaired (generate's output), no features.
+void benchmark_model(const std::string& input, const std::string& name, double size_fraction, const Hex_tools& tools) {
+  const auto t = std::chrono::steady_clock::now();
+  const CGAL_ext::IO::Medit_mesh mesh = mesh_of(input, size_fraction);
+  Tr tr;
+  CGAL_ext::build_triangulation_from_tets(mesh.vertices, mesh.tetrahedra, mesh.tetrahedron_references, tr);
+  const Field field(tr, Eigen::Matrix3d::Identity().eval());
+  const double seconds_mesh = since(t);
+  const double h = diagonal(mesh.vertices) * tools.fraction;
+  // Generate's default: features, then the repair of non-meshable edges.
+  auto t_field = std::chrono::steady_clock::now();
+  Frames ff(field);
+  ff.compute();
+  const double seconds_compute = since(t_field);
+  print_row(name, "no repair", measure(tr, field, ff, seconds_compute, tools, mesh, h), seconds_mesh);
+  t_field = std::chrono::steady_clock::now();
+  CGAL_ext::repair_singularities(ff);
+  print_row(name, "repaired", measure(tr, field, ff, seconds_compute + since(t_field), tools, mesh, h), seconds_mesh);
+  t_field = std::chrono::steady_clock::now();
+  Frames plain(field);
+  CGAL_ext::Frame_field_options options;
+  options.feature_angle_deg = 180;
+  plain.compute(options);
+  print_row(name, "no features", measure(tr, field, plain, since(t_field), tools, mesh, h), seconds_mesh);
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -334,28 +360,7 @@ int main(int argc, char** argv) {
   for (const std::string& input : inputs) {
     const std::string name = input.rfind("builtin:", 0) == 0 ? input : std::filesystem::path(input).filename().string();
     try {
-      const auto t = std::chrono::steady_clock::now();
-      const CGAL_ext::IO::Medit_mesh mesh = mesh_of(input, size_fraction);
-      Tr tr;
-      CGAL_ext::build_triangulation_from_tets(mesh.vertices, mesh.tetrahedra, mesh.tetrahedron_references, tr);
-      const Field field(tr, Eigen::Matrix3d::Identity().eval());
-      const double seconds_mesh = since(t);
-      const double h = diagonal(mesh.vertices) * tools.fraction;
-      // Generate's default: features, then the repair of non-meshable edges.
-      auto t_field = std::chrono::steady_clock::now();
-      Frames ff(field);
-      ff.compute();
-      const double seconds_compute = since(t_field);
-      print_row(name, "no repair", measure(tr, field, ff, seconds_compute, tools, mesh, h), seconds_mesh);
-      t_field = std::chrono::steady_clock::now();
-      CGAL_ext::repair_singularities(ff);
-      print_row(name, "repaired", measure(tr, field, ff, seconds_compute + since(t_field), tools, mesh, h), seconds_mesh);
-      t_field = std::chrono::steady_clock::now();
-      Frames plain(field);
-      CGAL_ext::Frame_field_options options;
-      options.feature_angle_deg = 180;
-      plain.compute(options);
-      print_row(name, "no features", measure(tr, field, plain, since(t_field), tools, mesh, h), seconds_mesh);
+      benchmark_model(input, name, size_fraction, tools);
     } catch (const std::exception& e) {
       std::printf("%-22s error: %s\n", name.c_str(), e.what());
       ++failures;

@@ -110,6 +110,117 @@ void interleaved(int rounds, bool cold, const std::array<std::function<std::size
     }
 }
 
+struct Segment_class {
+  std::string name;
+  double length; // < 0: across the cube
+};
+
+// per_class random segments of a class, endpoints in [lo, hi]^3, each with
+// the cell containing q as its hint.
+std::vector<Segment> random_segments(const DT& dt, const Segment_class& cl, std::size_t per_class, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(0, 1);
+  const double lo = 0.05, hi = 0.95; // endpoints well inside the convex hull
+  std::uniform_real_distribution<double> in(lo, hi);
+  std::vector<Segment> segs;
+  while (segs.size() < per_class) {
+    Point q(in(rng), in(rng), in(rng)), p;
+    if (cl.length < 0) {
+      // from near one face of the cube to near the opposite one
+      const int axis = int(segs.size() % 3);
+      double a[3] = {in(rng), in(rng), in(rng)}, b[3] = {in(rng), in(rng), in(rng)};
+      a[axis] = lo;
+      b[axis] = hi;
+      q = Point(a[0], a[1], a[2]);
+      p = Point(b[0], b[1], b[2]);
+    } else {
+      // random direction
+      double d[3], len2 = 0;
+      do {
+        len2 = 0;
+        for (double& x : d) {
+          x = 2 * u(rng) - 1;
+          len2 += x * x;
+        }
+      } while (len2 > 1 || len2 < 1e-4);
+      const double s = cl.length / std::sqrt(len2);
+      p = Point(q.x() + s * d[0], q.y() + s * d[1], q.z() + s * d[2]);
+      if (p.x() < lo || p.x() > hi || p.y() < lo || p.y() > hi || p.z() < lo || p.z() > hi) continue;
+    }
+    segs.push_back({q, p, dt.locate(q)});
+  }
+  return segs;
+}
+
+// Times the five runs on the segments, cold and warm, and prints a line each.
+void measure(const DT& dt, const Walk& walk, const Segment_class& cl, const std::vector<Segment>& segs) {
+  std::vector<Walk::Query> queries;
+  for (const Segment& x : segs) queries.push_back({x.q, x.p, x.hint});
+  auto per_call = [&](bool full) {
+    return [&, full] {
+      std::size_t n_cells = 0;
+      auto count = boost::make_function_output_iterator([&](const Piece& y) { n_cells += y.dimension == 3; });
+      for (const Segment& x : segs) {
+        if (full) walk(x.q, x.p, count, x.hint);
+        else walk.fast(x.q, x.p, count, x.hint);
+      }
+      return n_cells;
+    };
+  };
+  auto batched = [&](bool full) {
+    return [&, full] {
+      std::size_t n_cells = 0;
+      auto count = [&](std::size_t, const Piece& y) { n_cells += y.dimension == 3; };
+      if (full) walk.batch(queries, count);
+      else walk.fast_batch(queries, count);
+      return n_cells;
+    };
+  };
+  const std::array<std::function<std::size_t()>, 5> runs = {
+      per_call(false), batched(false), per_call(true), batched(true), [&] {
+        std::size_t n_cells = 0;
+        for (const Segment& x : segs)
+          for (DT::Cell_handle c : dt.segment_traverser_cell_handles(x.q, x.p, x.hint)) n_cells += !dt.is_infinite(c);
+        return n_cells;
+      }};
+  for (const bool cold : {true, false}) {
+    std::array<double, 5> best;
+    std::array<std::size_t, 5> cells;
+    interleaved(5, cold, runs, best, cells);
+    std::printf("%-20s %-6s %9zu %9.2f |", cl.name.c_str(), cold ? "cold" : "warm", segs.size(),
+                double(cells[4]) / double(segs.size()));
+    for (std::size_t i = 0; i < 5; ++i) std::printf(" %9.2f", double(cells[i]) / best[i] / 1e6);
+    std::printf(" |");
+    for (std::size_t i = 0; i < 4; ++i) std::printf(" %9.2f", (double(cells[i]) / best[i]) / (double(cells[4]) / best[4]));
+    std::printf("\n");
+    for (std::size_t i = 0; i < 4; ++i)
+      if (cells[i] != cells[4])
+        std::printf("  (run %zu reported %zu cells, CGAL's traverser %zu)\n", i, cells[i], cells[4]);
+  }
+}
+
+// The number of segments whose cell sequence (single call or batch) differs from CGAL's traverser's.
+std::size_t mismatches_with_cgal(const DT& dt, const Walk& walk, const std::vector<Segment>& segs) {
+  std::vector<Walk::Query> queries;
+  for (const Segment& x : segs) queries.push_back({x.q, x.p, x.hint});
+  std::size_t mismatches = 0;
+  std::vector<std::vector<DT::Cell_handle>> batch_cells(segs.size());
+  walk.fast_batch(queries, [&](std::size_t i, const Piece& y) {
+    if (y.dimension == 3) batch_cells[i].push_back(y.cell);
+  });
+  for (std::size_t i = 0; i < segs.size(); ++i) {
+    const Segment& s = segs[i];
+    std::vector<Piece> pieces;
+    walk.fast(s.q, s.p, std::back_inserter(pieces), s.hint);
+    std::vector<DT::Cell_handle> a, b;
+    for (const Piece& x : pieces)
+      if (x.dimension == 3) a.push_back(x.cell);
+    for (DT::Cell_handle c : dt.segment_traverser_cell_handles(s.q, s.p, s.hint))
+      if (!dt.is_infinite(c)) b.push_back(c);
+    mismatches += a != b || batch_cells[i] != b;
+  }
+  return mismatches;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -131,11 +242,7 @@ int main(int argc, char** argv) {
               dt.number_of_finite_cells(), seconds_since(t0));
 
   const double spacing = std::cbrt(1.0 / double(n));
-  struct Class {
-    std::string name;
-    double length; // < 0: across the cube
-  };
-  const Class classes[] = {{"short (0.5 h)", 0.5 * spacing}, {"medium (~10 cells)", 2.4 * spacing}, {"long (across)", -1}};
+  const Segment_class classes[] = {{"short (0.5 h)", 0.5 * spacing}, {"medium (~10 cells)", 2.4 * spacing}, {"long (across)", -1}};
 
   t0 = std::chrono::steady_clock::now();
   const Walk walk(dt);
@@ -146,100 +253,12 @@ int main(int argc, char** argv) {
   std::printf("%-20s %-6s %9s %9s | %9s %9s %9s %9s %9s | %9s %9s %9s %9s\n", "class", "caches", "segments", "cells/seg",
               "fast", "fast bat", "full", "full bat", "CGAL", "fast", "fast bat", "full", "full bat");
 
-  const double lo = 0.05, hi = 0.95; // endpoints well inside the convex hull
-  std::uniform_real_distribution<double> in(lo, hi);
-  for (const Class& cl : classes) {
-    std::vector<Segment> segs;
-    while (segs.size() < per_class) {
-      Point q(in(rng), in(rng), in(rng)), p;
-      if (cl.length < 0) {
-        // from near one face of the cube to near the opposite one
-        const int axis = int(segs.size() % 3);
-        double a[3] = {in(rng), in(rng), in(rng)}, b[3] = {in(rng), in(rng), in(rng)};
-        a[axis] = lo;
-        b[axis] = hi;
-        q = Point(a[0], a[1], a[2]);
-        p = Point(b[0], b[1], b[2]);
-      } else {
-        // random direction
-        double d[3], len2 = 0;
-        do {
-          len2 = 0;
-          for (double& x : d) {
-            x = 2 * u(rng) - 1;
-            len2 += x * x;
-          }
-        } while (len2 > 1 || len2 < 1e-4);
-        const double s = cl.length / std::sqrt(len2);
-        p = Point(q.x() + s * d[0], q.y() + s * d[1], q.z() + s * d[2]);
-        if (p.x() < lo || p.x() > hi || p.y() < lo || p.y() > hi || p.z() < lo || p.z() > hi) continue;
-      }
-      segs.push_back({q, p, dt.locate(q)});
-    }
-
-    std::vector<Walk::Query> queries;
-    for (const Segment& x : segs) queries.push_back({x.q, x.p, x.hint});
-    auto per_call = [&](bool full) {
-      return [&, full] {
-        std::size_t n_cells = 0;
-        auto count = boost::make_function_output_iterator([&](const Piece& y) { n_cells += y.dimension == 3; });
-        for (const Segment& x : segs) {
-          if (full) walk(x.q, x.p, count, x.hint);
-          else walk.fast(x.q, x.p, count, x.hint);
-        }
-        return n_cells;
-      };
-    };
-    auto batched = [&](bool full) {
-      return [&, full] {
-        std::size_t n_cells = 0;
-        auto count = [&](std::size_t, const Piece& y) { n_cells += y.dimension == 3; };
-        if (full) walk.batch(queries, count);
-        else walk.fast_batch(queries, count);
-        return n_cells;
-      };
-    };
-    const std::array<std::function<std::size_t()>, 5> runs = {
-        per_call(false), batched(false), per_call(true), batched(true), [&] {
-          std::size_t n_cells = 0;
-          for (const Segment& x : segs)
-            for (DT::Cell_handle c : dt.segment_traverser_cell_handles(x.q, x.p, x.hint)) n_cells += !dt.is_infinite(c);
-          return n_cells;
-        }};
-    for (const bool cold : {true, false}) {
-      std::array<double, 5> best;
-      std::array<std::size_t, 5> cells;
-      interleaved(5, cold, runs, best, cells);
-      std::printf("%-20s %-6s %9zu %9.2f |", cl.name.c_str(), cold ? "cold" : "warm", segs.size(),
-                  double(cells[4]) / double(segs.size()));
-      for (std::size_t i = 0; i < 5; ++i) std::printf(" %9.2f", double(cells[i]) / best[i] / 1e6);
-      std::printf(" |");
-      for (std::size_t i = 0; i < 4; ++i) std::printf(" %9.2f", (double(cells[i]) / best[i]) / (double(cells[4]) / best[4]));
-      std::printf("\n");
-      for (std::size_t i = 0; i < 4; ++i)
-        if (cells[i] != cells[4])
-          std::printf("  (run %zu reported %zu cells, CGAL's traverser %zu)\n", i, cells[i], cells[4]);
-    }
+  for (const Segment_class& cl : classes) {
+    const std::vector<Segment> segs = random_segments(dt, cl, per_class, rng);
+    measure(dt, walk, cl, segs);
     // Cell sequences must agree on these generic segments (checked outside the timings).
-    // The batch's sequences too.
-    std::size_t mismatches = 0;
-    std::vector<std::vector<DT::Cell_handle>> batch_cells(segs.size());
-    walk.fast_batch(queries, [&](std::size_t i, const Piece& y) {
-      if (y.dimension == 3) batch_cells[i].push_back(y.cell);
-    });
-    for (std::size_t i = 0; i < segs.size(); ++i) {
-      const Segment& s = segs[i];
-      std::vector<Piece> pieces;
-      walk.fast(s.q, s.p, std::back_inserter(pieces), s.hint);
-      std::vector<DT::Cell_handle> a, b;
-      for (const Piece& x : pieces)
-        if (x.dimension == 3) a.push_back(x.cell);
-      for (DT::Cell_handle c : dt.segment_traverser_cell_handles(s.q, s.p, s.hint))
-        if (!dt.is_infinite(c)) b.push_back(c);
-      mismatches += a != b || batch_cells[i] != b;
-    }
     std::printf("%-20s %-6s %zu of %zu segments with a cell sequence (single call or batch) different from CGAL's\n", cl.name.c_str(), "check",
-                mismatches, segs.size());
+                mismatches_with_cgal(dt, walk, segs), segs.size());
   }
   return 0;
 }
