@@ -2,12 +2,13 @@
 //
 //   pipeline_example MESH OUTDIR
 //
-// The calls that `metric-frames generate MESH --metric G.sol --hex-size 0.1
+// The calls that `metric-frames generate MESH --metric G.sol --hex-size 0.25
 // -o OUTDIR --force` makes, G.sol holding the tensors given here per vertex,
 // and so the same files, bit for bit (test_cli_generate checks it):
 // frames.fra, frames.perm, mesh.mesh, frames.vtu, singularities.vtu,
-// report.json. The metric is the one of frame_field_example: hexes of edge
-// 0.1 / (1 + z) along x and z, half that along y.
+// report.json. The metric has the shape of frame_field_example's: hexes of
+// edge 0.25 / (1 + z) along x and z, half that along y (about 400 hexes,
+// coarser than the 1175 tets, as a hex mesh from this tet mesh should be).
 // 1. load_tet_mesh() reads the .mesh (or meshes a surface with Mesh_3).
 // 2. make_pipeline_metric() divides the metric by h^2 and checks it.
 // 3. generate_pipeline_frame_field() computes, repairs and classifies.
@@ -44,7 +45,7 @@ int main(int argc, char** argv) {
     metric.per_vertex->push_back(Eigen::Vector3d(1, 4, 1).asDiagonal() * ((1 + p[2]) * (1 + p[2])));
   metric.source = "pipeline_example";
   metric.name = "diag(1, 4, 1) (1 + z)^2";
-  metric.hex_size = 0.1;
+  metric.hex_size = 0.25;
   const CGAL_ext::Pipeline_metric field = CGAL_ext::make_pipeline_metric(mesh, metric, stage);
 
   CGAL_ext::Frame_field_options options;
