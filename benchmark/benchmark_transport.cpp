@@ -15,13 +15,20 @@
 // 1 and 2 threads) and W evaluations per transport, and the ratio of the
 // evaluations of Magnus to those of the trapezoid scheme. A third run uses the
 // n1 mesh with a rough metric (an independent random SPD tensor per vertex,
-// eigenvalues in [0.01, 100]), where each piece turns far more.
+// eigenvalues in [0.01, 100]), where each piece turns far more. A last
+// section compares where the per-vertex metric lives, on the n1 mesh:
+// Metric_field_3 (its own array of roots A) against Property_map_metric_field_3
+// reading the user's array of A or of g (a root per read), for the field's
+// set-up with precompute() and for crossing transports (Magnus, 1e-8).
 #include <CGAL_ext/Metric_field_3.h>
+#include <CGAL_ext/Property_map_metric_field_3.h>
 #include <CGAL_ext/Metric_transport_3.h>
 #include <CGAL_ext/Tet_mesh_triangulation_3.h>
 #include <CGAL_ext/build_triangulation_from_tets.h>
 
 #include "kuhn_grid.h"
+
+#include <boost/property_map/property_map.hpp>
 
 #include <tbb/global_control.h>
 
@@ -42,7 +49,7 @@ namespace {
 using Tr = CGAL_ext::Tet_mesh_triangulation_3<>;
 using Point = Tr::Point;
 using Field = CGAL_ext::Metric_field_3<Tr>;
-using Transport = CGAL_ext::Metric_transport_3<Tr, CGAL_ext::Is_tet_mesh_domain_cell>;
+using Transport = CGAL_ext::Metric_transport_3<Field>;
 using Pairs = std::vector<std::pair<Point, Point>>;
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -83,7 +90,8 @@ struct Measure {
   std::size_t failed;
 };
 
-Measure run(const Transport& transport, const Pairs& pairs, const CGAL_ext::Transport_options& opt, int threads) {
+template <class Transport_type>
+Measure run(const Transport_type& transport, const Pairs& pairs, const CGAL_ext::Transport_options& opt, int threads) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
   std::vector<CGAL_ext::Metric_transport_result> out;
   double best = 1e300;
@@ -101,6 +109,52 @@ Measure run(const Transport& transport, const Pairs& pairs, const CGAL_ext::Tran
     failed += !r.ok;
   }
   return {double(pairs.size()) / best, double(evaluations) / double(pairs.size()), failed};
+}
+
+// The per-vertex metric in Metric_field_3 and in the user's arrays read
+// through Property_map_metric_field_3: set-up and transport throughput.
+void compare_metric_storage(int n, std::size_t npairs, unsigned seed) {
+  using Array_map = boost::iterator_property_map<std::vector<Eigen::Matrix3d>::iterator,
+                                                 CGAL_ext::Tet_mesh_vertex_index_map<Tr>>;
+  using Map_field = CGAL_ext::Property_map_metric_field_3<Tr, Array_map>;
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::array<std::size_t, 4>> tets;
+  benchmark_meshes::kuhn_grid(n, -0.5, 1.5 / n, points, tets);
+  Tr tr;
+  CGAL_ext::build_triangulation_from_tets(points, tets, {}, tr);
+  std::vector<Eigen::Matrix3d> g(points.size()), A(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    g[i] = flat_metric(Point(points[i][0], points[i][1], points[i][2]));
+    A[i] = CGAL_ext::sqrt_spd(g[i]);
+  }
+  const Pairs pairs = make_pairs(n, std::max<std::size_t>(npairs / 10, 1), true, seed);
+  CGAL_ext::Transport_options opt;
+  opt.tolerance = 1e-8;
+  std::printf("\nwhere the per-vertex metric lives (%zu tets, smooth metric, %zu crossing pairs, magnus 1e-8, 1 thread):\n"
+              "%-44s %12s %14s %8s\n",
+              tets.size(), pairs.size(), "field", "set-up s", "transports /s", "ratio");
+  double reference = 0;
+  const auto report = [&](const char* name, double setup, const Measure& m) {
+    if (reference == 0) reference = m.per_second;
+    std::printf("%-44s %12.3f %14.0f %8.3f\n", name, setup, m.per_second, m.per_second / reference);
+    std::fflush(stdout);
+  };
+  {
+    const auto t0 = std::chrono::steady_clock::now();
+    const Field field(tr, g);
+    field.precompute();
+    const double setup = seconds_since(t0);
+    report("Metric_field_3 (stores A, from g)", setup, run(CGAL_ext::Metric_transport_3<Field>(field), pairs, opt, 1));
+  }
+  for (const bool roots : {true, false}) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const Map_field field(tr, Array_map(roots ? A.begin() : g.begin()),
+                          roots ? CGAL_ext::Vertex_metric_kind::sqrt_metric : CGAL_ext::Vertex_metric_kind::metric);
+    field.precompute();
+    const double setup = seconds_since(t0);
+    report(roots ? "Property_map_metric_field_3, user's array of A" : "Property_map_metric_field_3, user's array of g",
+           setup, run(CGAL_ext::Metric_transport_3<Map_field>(field), pairs, opt, 1));
+  }
 }
 
 } // namespace
@@ -144,7 +198,7 @@ int main(int argc, char** argv) {
     const Field field(tr, metrics);
     field.precompute();
     const double setup = seconds_since(t0);
-    const Transport transport(field, CGAL_ext::Is_tet_mesh_domain_cell());
+    const Transport transport(field);
     std::fprintf(stderr, "[stage] mesh n = %d: %zu tets, triangulation and %s metric field in %.2f s\n", n,
                  tets.size(), rough ? "rough" : "smooth", setup);
     if (rough) std::printf("rough metric (random SPD per vertex, eigenvalues in [0.01, 100]):\n");
@@ -170,5 +224,6 @@ int main(int argc, char** argv) {
                   crossing ? "crossing" : "neighbour", evals_1e8[1] / evals_1e8[0], evals_1e8[0] / evals_1e8[1]);
     }
   }
+  compare_metric_storage(n1, npairs, seed);
   return 0;
 }

@@ -8,11 +8,42 @@
 // component needing more than the concept says fails to compile in
 // test_concepts.cpp. It is a constant metric, so its results are known.
 
+#include <boost/property_map/property_map.hpp>
+
 #include <Eigen/Core>
 #include <Eigen/LU>
 
+#include <cstddef>
+#include <cstdint>
+
 namespace CGAL_ext {
 namespace testing {
+
+// The archetypes of VertexIndexMap_3 and DomainCellIndexMap_3
+// (doc/Concepts): a readable property map's four types and get(), nothing
+// else (not even default construction: the components take the maps from
+// the field). They read the tet mesh's info; the domain is the tetrahedra.
+template <class Tr>
+class Vertex_index_map_archetype {
+public:
+  typedef typename Tr::Vertex_handle key_type;
+  typedef std::size_t value_type;
+  typedef std::size_t reference;
+  typedef boost::readable_property_map_tag category;
+  explicit Vertex_index_map_archetype(int) {}
+  friend std::size_t get(const Vertex_index_map_archetype&, key_type v) { return v->info(); }
+};
+
+template <class Tr>
+class Cell_index_map_archetype {
+public:
+  typedef typename Tr::Cell_handle key_type;
+  typedef std::int64_t value_type;
+  typedef std::int64_t reference;
+  typedef boost::readable_property_map_tag category;
+  explicit Cell_index_map_archetype(int) {}
+  friend std::int64_t get(const Cell_index_map_archetype&, key_type c) { return c->info().index; }
+};
 
 template <class Tr>
 class Metric_field_archetype_3 {
@@ -21,11 +52,15 @@ public:
   typedef typename Tr::Vertex_handle Vertex_handle;
   typedef typename Tr::Cell_handle Cell_handle;
   typedef typename Tr::Point Point_3;
+  typedef Vertex_index_map_archetype<Tr> Vertex_index_map;
+  typedef Cell_index_map_archetype<Tr> Cell_index_map;
 
   Metric_field_archetype_3(const Tr& tr, const Eigen::Matrix3d& A) : tr_(&tr), A_(A) {}
   Metric_field_archetype_3(const Metric_field_archetype_3&) = delete; // the components keep it by address
 
   const Triangulation_3& triangulation() const { return *tr_; }
+  Vertex_index_map vertex_index_map() const { return Vertex_index_map(0); }
+  Cell_index_map cell_index_map() const { return Cell_index_map(0); }
   Eigen::Matrix3d sqrt_metric(Vertex_handle) const { return A_; }
   Eigen::Matrix3d A_at(Cell_handle, const Point_3&) const { return A_; }
   Eigen::Matrix3d curl(Cell_handle) const { return Eigen::Matrix3d::Zero(); }

@@ -3,19 +3,26 @@
 // with exactly the concept's members) through the frame field, its sharp
 // features, matchings, singular edges and repair, the transport between
 // points and the transport in a cell; and the results equal those of the
-// default model, Metric_field_3, with the same constant metric.
+// default model, Metric_field_3, with the same constant metric. The other
+// model, Property_map_metric_field_3 on the user's array, gives the frame
+// field of Metric_field_3 bit for bit.
 #include <CGAL_ext/Frame_field_3.h>
 #include <CGAL_ext/Frame_field_matchings_3.h>
 #include <CGAL_ext/Frame_field_repair_3.h>
 #include <CGAL_ext/Frame_field_singularities_3.h>
 #include <CGAL_ext/Metric_field_3.h>
 #include <CGAL_ext/Metric_transport_3.h>
+#include <CGAL_ext/Property_map_metric_field_3.h>
 #include <CGAL_ext/build_triangulation_from_tets.h>
 #include <CGAL_ext/make_kuhn_grid.h>
 
 #include "metric_field_archetype.h"
 
 #include <catch2/catch.hpp>
+
+#include <boost/property_map/property_map.hpp>
+
+#include <vector>
 
 using namespace CGAL_ext;
 using Tr = Tet_mesh_triangulation_3<>;
@@ -56,7 +63,7 @@ TEST_CASE("MetricField_3: its archetype drives the frame field, singularities, r
 
   // Transports: the identity for a constant metric, along any segment in the
   // domain; a segment that ends in the missing cube (outside the domain) is refused.
-  const Metric_transport_3<Tr, Is_tet_mesh_domain_cell, Archetype> transport(archetype, Is_tet_mesh_domain_cell());
+  const Metric_transport_3<Archetype> transport(archetype);
   const Metric_transport_result inside = transport(Tr::Point(0.1, 0.1, 0.1), Tr::Point(0.9, 0.2, 0.45));
   INFO(inside.message);
   REQUIRE(inside.ok);
@@ -67,4 +74,39 @@ TEST_CASE("MetricField_3: its archetype drives the frame field, singularities, r
   const Transport_result in_cell = cell_transport(archetype, c, Tr::Point(ff.centroid(0)(0), ff.centroid(0)(1), ff.centroid(0)(2)),
                                                   c->vertex(0)->point());
   CHECK(in_cell.rotation.isApprox(Eigen::Matrix3d::Identity(), 1e-14));
+}
+
+TEST_CASE("MetricField_3: a frame field on the user's property map of g equals the one on Metric_field_3, bit for bit",
+          "[concepts]") {
+  // A varying metric on a non-convex box: the frames depend on every
+  // value the field reads (A, curls, transports, metric normals).
+  const IO::Medit_mesh g = make_kuhn_grid({3, 3, 2}, 1.0 / 3, {0, 0, 0}, [](int i, int j, int) { return !(i == 2 && j == 2); });
+  Tr tr;
+  build_triangulation_from_tets(g.vertices, g.tetrahedra, {}, tr);
+  std::vector<Eigen::Matrix3d> metrics(g.vertices.size());
+  for (std::size_t i = 0; i < metrics.size(); ++i) {
+    const auto& p = g.vertices[i];
+    Eigen::Matrix3d m;
+    m << 4 + p[2], 0.5 * p[0], 0, 0.5 * p[0], 9 - 2 * p[1], 0.3, 0, 0.3, 5 + p[0] * p[1];
+    metrics[i] = m;
+  }
+  using Array_map = boost::iterator_property_map<std::vector<Eigen::Matrix3d>::iterator, Tet_mesh_vertex_index_map<Tr>>;
+  using Map_field = Property_map_metric_field_3<Tr, Array_map>;
+  const Map_field user(tr, Array_map(metrics.begin()), Vertex_metric_kind::metric);
+  const Metric_field_3<Tr> stored(tr, metrics);
+  Frame_field_3<Map_field> ff(user);
+  Frame_field_3<Metric_field_3<Tr>> reference(stored);
+  const Frame_field_statistics& s = ff.compute();
+  const Frame_field_statistics& r = reference.compute();
+  REQUIRE(ff.size() == reference.size());
+  CHECK(s.max_transport_angle > 0); // a varying metric: the transports are not all the identity
+  CHECK(s.max_transport_angle == r.max_transport_angle);
+  CHECK(s.smoothness_energy == r.smoothness_energy);
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < ff.size(); ++i) differ += ff.rotation(i) != reference.rotation(i);
+  CHECK(differ == 0);
+  const Metric_transport_3<Map_field> transport(user);
+  const Metric_transport_3<Metric_field_3<Tr>> stored_transport(stored);
+  const Tr::Point a(0.05, 0.1, 0.2), b(0.6, 0.95, 0.5);
+  CHECK(transport(a, b).rotation == stored_transport(a, b).rotation);
 }

@@ -8,12 +8,15 @@
 #include <CGAL_ext/Input_error.h>
 #include <CGAL_ext/Metric_field_3.h>
 #include <CGAL_ext/Metric_tensor.h>
+#include <CGAL_ext/Property_map_metric_field_3.h>
 #include <CGAL_ext/build_triangulation_from_tets.h>
 #include <CGAL_ext/make_kuhn_grid.h>
 
 #include <catch2/catch.hpp>
 
 #include "test_support.h"
+
+#include <boost/property_map/property_map.hpp>
 
 #include <Eigen/Geometry>
 
@@ -23,6 +26,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <random>
 #include <vector>
 
@@ -47,6 +51,13 @@ struct Mesh {
 Mesh kuhn_grid(int n) {
   CGAL_ext::IO::Medit_mesh g = CGAL_ext::make_kuhn_grid({n, n, n}, 1.0 / n);
   return Mesh{std::move(g.vertices), std::move(g.tetrahedra)};
+}
+
+// kuhn_grid(n) in tr, built by build_triangulation_from_tets().
+Mesh kuhn_triangulation(int n, Tr& tr) {
+  Mesh m = kuhn_grid(n);
+  CGAL_ext::build_triangulation_from_tets(m.points, m.tets, {}, tr);
+  return m;
 }
 
 V3 vec(const Point& p) { return V3(p.x(), p.y(), p.z()); }
@@ -147,9 +158,8 @@ TEST_CASE("check_metric_tensor and sqrt_spd work up to the ends of the double ra
 
 TEST_CASE("A is interpolated linearly and the curl matches doc/math.md section 2", "[metric_field]") {
   Random r(22);
-  const Mesh m = kuhn_grid(2);
   Tr tr;
-  CGAL_ext::build_triangulation_from_tets(m.points, m.tets, {}, tr);
+  const Mesh m = kuhn_triangulation(2, tr);
   std::vector<M3> g(m.points.size());
   for (M3& x : g) x = r.spd(0.2, 5);
   const Field field(tr, g);
@@ -225,9 +235,8 @@ TEST_CASE("an exactly linear A is reproduced, with its exact curl in every cell"
 TEST_CASE("a constant metric field has zero curl, zero connection and identity transport, exactly",
           "[metric_field]") {
   Random r(24);
-  const Mesh m = kuhn_grid(2);
   Tr tr;
-  CGAL_ext::build_triangulation_from_tets(m.points, m.tets, {}, tr);
+  const Mesh m = kuhn_triangulation(2, tr);
   const M3 g = r.spd(0.1, 10);
   const Field field(tr, g);
   for (auto c : tr.finite_cell_handles()) {
@@ -270,9 +279,8 @@ TEST_CASE("transport through the field matches the transport from vertex data", 
 
 TEST_CASE("precompute and concurrent lazy evaluation give the same bits", "[metric_field]") {
   Random r(26);
-  const Mesh m = kuhn_grid(4);
   Tr tr;
-  CGAL_ext::build_triangulation_from_tets(m.points, m.tets, {}, tr);
+  const Mesh m = kuhn_triangulation(4, tr);
   std::vector<M3> g(m.points.size());
   for (M3& x : g) x = r.spd(0.2, 5);
   const Field sequential(tr, g), pre(tr, g), lazy(tr, g);
@@ -293,9 +301,8 @@ TEST_CASE("precompute and concurrent lazy evaluation give the same bits", "[metr
 
 TEST_CASE("property maps and set_metric", "[metric_field]") {
   Random r(27);
-  const Mesh m = kuhn_grid(1);
   Tr tr;
-  CGAL_ext::build_triangulation_from_tets(m.points, m.tets, {}, tr);
+  const Mesh m = kuhn_triangulation(1, tr);
   std::vector<M3> g(m.points.size());
   for (M3& x : g) x = r.spd(0.2, 5);
   Field field(tr, g);
@@ -324,10 +331,102 @@ TEST_CASE("property maps and set_metric", "[metric_field]") {
   }
 }
 
-TEST_CASE("bad metrics are input errors that name the vertex", "[metric_field]") {
-  const Mesh m = kuhn_grid(1);
+TEST_CASE("a field read from the user's property map of g or of A equals Metric_field_3, bit for bit",
+          "[metric_field]") {
+  Random r(41);
   Tr tr;
-  CGAL_ext::build_triangulation_from_tets(m.points, m.tets, {}, tr);
+  const Mesh m = kuhn_triangulation(3, tr);
+  std::vector<M3> g(m.points.size()), A(m.points.size());
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    g[i] = r.spd(0.2, 5);
+    A[i] = CGAL_ext::sqrt_spd(g[i]);
+  }
+  const Field stored(tr, g);
+  // The user's arrays through their vertex indices, and a std::map keyed by
+  // vertex handle: two kinds of readable maps.
+  using Array_map = boost::iterator_property_map<std::vector<M3>::iterator, CGAL_ext::Tet_mesh_vertex_index_map<Tr>>;
+  using Handle_map = boost::associative_property_map<std::map<Tr::Vertex_handle, M3>>;
+  std::map<Tr::Vertex_handle, M3> by_handle;
+  for (auto v : tr.finite_vertex_handles()) by_handle[v] = g[v->info()];
+  const CGAL_ext::Property_map_metric_field_3<Tr, Array_map> of_g(tr, Array_map(g.begin()), CGAL_ext::Vertex_metric_kind::metric);
+  const CGAL_ext::Property_map_metric_field_3<Tr, Array_map> of_A(tr, Array_map(A.begin()),
+                                                                  CGAL_ext::Vertex_metric_kind::sqrt_metric);
+  const CGAL_ext::Property_map_metric_field_3<Tr, Handle_map> of_handles(tr, Handle_map(by_handle),
+                                                                         CGAL_ext::Vertex_metric_kind::metric);
+  CHECK(of_g.number_of_domain_cells() == stored.number_of_domain_cells());
+  for (auto c : tr.finite_cell_handles()) {
+    const Point p(r.uniform(0, 1), r.uniform(0, 1), r.uniform(0, 1));
+    for (const auto* f : {&of_g, &of_A}) {
+      CHECK(f->A_at(c, p) == stored.A_at(c, p));
+      CHECK(f->curl(c) == stored.curl(c));
+      CHECK(f->connection(c, p) == stored.connection(c, p));
+      CHECK(f->metric_volume(c) == stored.metric_volume(c));
+    }
+    CHECK(of_handles.curl(c) == stored.curl(c));
+  }
+  for (auto v : tr.finite_vertex_handles()) {
+    CHECK(of_g.sqrt_metric(v) == stored.sqrt_metric(v));
+    CHECK(of_A.metric(v) == stored.metric(v));
+  }
+  CHECK(of_g.metric_volume() == stored.metric_volume());
+}
+
+TEST_CASE("a property-map field checks the user's values, names the vertex, and follows metric_changed",
+          "[metric_field]") {
+  Random r(43);
+  Tr tr;
+  const Mesh m = kuhn_triangulation(2, tr);
+  using Array_map = boost::iterator_property_map<std::vector<M3>::iterator, CGAL_ext::Tet_mesh_vertex_index_map<Tr>>;
+  using Map_field = CGAL_ext::Property_map_metric_field_3<Tr, Array_map>;
+  std::vector<M3> g(m.points.size());
+  for (M3& x : g) x = r.spd(0.2, 5);
+
+  // A value that is not SPD, as g and as A; an asymmetric A.
+  std::vector<M3> bad = g;
+  bad[5](2, 2) = -1;
+  for (auto kind : {CGAL_ext::Vertex_metric_kind::metric, CGAL_ext::Vertex_metric_kind::sqrt_metric}) {
+    try {
+      const Map_field f(tr, Array_map(bad.begin()), kind);
+      FAIL("no exception");
+    } catch (const CGAL_ext::Input_error& e) {
+      CHECK(e.element() == "vertex 6");
+      CHECK_THAT(e.problem(), Catch::Contains("not positive definite"));
+      CHECK_THAT(e.problem(), Catch::Contains(kind == CGAL_ext::Vertex_metric_kind::sqrt_metric ? "square root A" : "metric tensor"));
+    }
+  }
+  bad = g;
+  bad[2](0, 1) += 1e-3;
+  CHECK_THROWS_AS(Map_field(tr, Array_map(bad.begin()), CGAL_ext::Vertex_metric_kind::sqrt_metric), CGAL_ext::Input_error);
+
+  // The user changes g in place: after metric_changed() every cached curl
+  // equals that of a field built on the new values; an invalid new value
+  // is refused with the vertex named.
+  Map_field field(tr, Array_map(g.begin()), CGAL_ext::Vertex_metric_kind::metric);
+  field.precompute();
+  const Field old(tr, g);
+  const auto v = *std::next(tr.finite_vertex_handles().begin(), 7);
+  g[v->info()] = r.spd(0.2, 5);
+  field.metric_changed(v);
+  const Field rebuilt(tr, g);
+  std::size_t changed = 0;
+  for (auto c : tr.finite_cell_handles()) {
+    CHECK(field.curl(c) == rebuilt.curl(c));
+    changed += field.curl(c) != old.curl(c);
+  }
+  CHECK(changed > 0); // the cells around v, whose cached curls were forgotten
+  g[v->info()](0, 0) = std::numeric_limits<double>::quiet_NaN();
+  try {
+    field.metric_changed(v);
+    FAIL("no exception");
+  } catch (const CGAL_ext::Input_error& e) {
+    CHECK(e.element() == "vertex " + std::to_string(v->info() + 1));
+    CHECK_THAT(e.problem(), Catch::Contains("non-finite"));
+  }
+}
+
+TEST_CASE("bad metrics are input errors that name the vertex", "[metric_field]") {
+  Tr tr;
+  const Mesh m = kuhn_triangulation(1, tr);
   std::vector<M3> g(m.points.size(), M3::Identity());
 
   auto expect_error = [&](const std::vector<M3>& metrics, const std::string& element, const std::string& words) {
@@ -365,9 +464,8 @@ TEST_CASE("bad metrics are input errors that name the vertex", "[metric_field]")
 }
 
 TEST_CASE("cells outside the domain are refused", "[metric_field]") {
-  const Mesh m = kuhn_grid(1);
   Tr tr;
-  CGAL_ext::build_triangulation_from_tets(m.points, m.tets, {}, tr);
+  const Mesh m = kuhn_triangulation(1, tr);
   const Field field(tr, M3::Identity().eval());
   Tr::Cell_handle outside;
   for (auto c : tr.all_cell_handles())

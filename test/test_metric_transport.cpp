@@ -44,7 +44,7 @@ using CGAL_ext::testing::V3;
 using Tr = Tet_mesh_triangulation_3<>;
 using Point = Tr::Point;
 using Field = Metric_field_3<Tr>;
-using Transport = Metric_transport_3<Tr, Is_tet_mesh_domain_cell>;
+using Transport = Metric_transport_3<Field>;
 
 V3 vec(const std::array<double, 3>& p) { return V3(p[0], p[1], p[2]); }
 V3 vec(const Point& p) { return V3(p.x(), p.y(), p.z()); }
@@ -182,7 +182,7 @@ TEST_CASE("a constant metric gives exactly the identity on every segment", "[met
   const M3 g = Random(3).spd(0.1, 10);
   for (const Test_mesh& m : {jittered_kuhn_grid(3, 11), l_shape_grid(4)}) {
     const Setup s(m, std::vector<M3>(m.points.size(), g));
-    const Transport transport(*s.field, Is_tet_mesh_domain_cell());
+    const Transport transport(*s.field);
     std::size_t inside = 0, degenerate = 0;
     for (const Test_segment& seg : degenerate_segments(s.mesh, 800, 5)) {
       for (const Transport_scheme scheme : {Transport_scheme::magnus, Transport_scheme::trapezoid}) {
@@ -211,7 +211,7 @@ TEST_CASE("pieces compose left-multiplied in path order: one cell split in two h
   // section 4), not T(a->b) T(b->c).
   const Test_mesh m = jittered_kuhn_grid(2, 7);
   const Setup s(m, random_metrics(m.points.size(), 13));
-  const Transport transport(*s.field, Is_tet_mesh_domain_cell());
+  const Transport transport(*s.field);
   Transport_options opt;
   opt.tolerance = 1e-11;
   Random r(5);
@@ -246,7 +246,7 @@ TEST_CASE("pieces compose left-multiplied in path order: one cell split in two h
 TEST_CASE("reversal and composition hold within the tolerance", "[metric_transport]") {
   const Test_mesh m = jittered_kuhn_grid(3, 5);
   const Setup s(m, random_metrics(m.points.size(), 29));
-  const Transport transport(*s.field, Is_tet_mesh_domain_cell());
+  const Transport transport(*s.field);
   for (const Transport_scheme scheme : {Transport_scheme::magnus, Transport_scheme::trapezoid}) {
     Transport_options opt;
     opt.scheme = scheme;
@@ -287,7 +287,7 @@ std::size_t compare_with_reference(const Test_mesh& m, const std::vector<Test_se
   const std::vector<M3> g = random_metrics(m.points.size(), 17);
   const Setup s(m, g);
   const Reference_field ref_field(m, g);
-  const Transport transport(*s.field, Is_tet_mesh_domain_cell());
+  const Transport transport(*s.field);
   const auto reference = make_exact_simplex_reference(s.tr, Is_tet_mesh_domain_cell(),
                                                       [](Tr::Vertex_handle v) { return v->info(); });
   std::size_t compared = 0, gaps = 0;
@@ -373,7 +373,7 @@ TEST_CASE("leaving a non-convex domain, or starting outside, is an error, never 
   // l_shape_grid(4): cubes of side 6 in [0, 24]^3 without those with x, y >= 12.
   const Test_mesh m = l_shape_grid(4);
   const Setup s(m, random_metrics(m.points.size(), 41));
-  const Transport transport(*s.field, Is_tet_mesh_domain_cell());
+  const Transport transport(*s.field);
   // Through the notch: leaves at x + y = ... the plane y = 12 at t = 3/7, comes back at x = 12, t = 4/7.
   const auto across = transport(Point(20, 6, 5), Point(6, 20, 5));
   CHECK(!across.ok);
@@ -421,7 +421,7 @@ TEST_CASE("the batch is bit-identical for 1 and 2 threads and to single transpor
   const Test_mesh m = jittered_kuhn_grid(4, 3);
   const Setup s(m, random_metrics(m.points.size(), 43));
   s.field->precompute();
-  const Transport transport(*s.field, Is_tet_mesh_domain_cell());
+  const Transport transport(*s.field);
   std::vector<std::pair<Point, Point>> pairs;
   for (const Test_segment& seg : degenerate_segments(m, 600, 47)) pairs.emplace_back(point(seg.q), point(seg.p));
   for (const Transport_scheme scheme : {Transport_scheme::magnus, Transport_scheme::trapezoid}) {
@@ -496,7 +496,7 @@ std::vector<double> convergence_table(const char* title, Make_mesh make_mesh) {
       g.push_back(flat::metric(vec(p)));
     }
     const Setup s(m, g);
-    const Transport transport(*s.field, Is_tet_mesh_domain_cell());
+    const Transport transport(*s.field);
     Transport_options opt;
     opt.tolerance = 1e-11;
     double worst = 0;

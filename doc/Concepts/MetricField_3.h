@@ -14,11 +14,18 @@
 /// frame field measures lengths and angles with `A`, and the transports
 /// integrate the connection of `A` and its curl.
 ///
+/// The field also defines the **domain**: the cells with a non-negative
+/// index in its cell index map. The frame field, the sharp features and the
+/// transports take the domain and both index maps from the field, never
+/// from a second argument, so that they cannot disagree.
+///
 /// `test/metric_field_archetype.h` is a model with exactly these members
-/// (and no other); the tests compile and run the frame field, the sharp
-/// features, the singular edges, the repair and the transport with it.
+/// (and no other), with archetypes of the two index maps; the tests compile
+/// and run the frame field, the sharp features, the singular edges, the
+/// repair and the transport with it.
 ///
 /// \cgalHasModel `CGAL_ext::Metric_field_3`
+/// \cgalHasModel `CGAL_ext::Property_map_metric_field_3`
 class MetricField_3 {
 public:
   /// The triangulation type, a CGAL `Triangulation_3` (for a tet mesh,
@@ -31,9 +38,22 @@ public:
   /// `Triangulation_3::Point`.
   typedef unspecified_type Point_3;
 
+  /// A model of `VertexIndexMap_3` on `Vertex_handle`.
+  typedef unspecified_type Vertex_index_map;
+  /// A model of `DomainCellIndexMap_3` on `Cell_handle`: it defines the domain.
+  typedef unspecified_type Cell_index_map;
+
   /// The triangulation the metric lives on; it outlives the field.
   /// \returns the triangulation
   const Triangulation_3& triangulation() const;
+
+  /// The vertex indices (they name vertices in messages and outputs).
+  /// \returns the vertex index map
+  Vertex_index_map vertex_index_map() const;
+
+  /// The cell indices, non-negative exactly on the domain cells.
+  /// \returns the cell index map
+  Cell_index_map cell_index_map() const;
 
   /// `A = g^{1/2}` at a finite vertex of the domain (symmetric positive definite).
   /// \param v the vertex

@@ -23,7 +23,7 @@
 using Tr = CGAL_ext::Tet_mesh_triangulation_3<>;
 using Point = Tr::Point;
 using Field = CGAL_ext::Metric_field_3<Tr>;
-using Transport = CGAL_ext::Metric_transport_3<Tr, CGAL_ext::Is_tet_mesh_domain_cell>;
+using Transport = CGAL_ext::Metric_transport_3<Field>;
 
 // g = J^T J for Phi = (X + 0.4 sin(Y+Z), Y + 0.3 sin(Z X), Z + 0.5 sin X).
 Eigen::Matrix3d metric(const Point& p) {
@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
   }
   const Field field(tr, metric); // A = g^{1/2} per vertex, linear in each tet
   field.precompute();            // the per-cell curls, in parallel
-  const Transport transport(field, CGAL_ext::Is_tet_mesh_domain_cell());
+  const Transport transport(field);
 
   CGAL_ext::Transport_options opt; // Magnus-4, adaptive
   opt.tolerance = 1e-10;           // radians, for the whole segment

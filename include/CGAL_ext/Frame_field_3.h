@@ -96,14 +96,13 @@ namespace CGAL_ext {
 /// depend on the number of threads.
 ///
 /// \tparam Metric_field a model of `MetricField_3`, such as `Metric_field_3<Tr>`
-/// \tparam VertexIndexMap a readable property map from vertex handle to its
-///         0-based index
-/// \tparam CellIndexMap a readable property map from cell handle to a 0-based
-///         index, negative outside the domain; the domain's indices must be
-///         exactly `0..n-1` (the tetrahedron order of the mesh file)
-template <class Metric_field,
-          class VertexIndexMap = Tet_mesh_vertex_index_map<typename Metric_field::Triangulation_3>,
-          class CellIndexMap = Tet_mesh_cell_index_map<typename Metric_field::Triangulation_3>>
+///
+/// The domain (the cells with a non-negative index) and the vertex and cell
+/// indices are the metric field's (`MetricField_3::cell_index_map()`), so
+/// the frames, the field and its transports always agree on them; the
+/// domain's cell indices must be exactly `0..n-1` (the tetrahedron order of
+/// the mesh file for the default maps).
+template <class Metric_field>
 class Frame_field_3 {
 public:
   /// The triangulation type.
@@ -120,13 +119,9 @@ public:
 
   /// Prepares the field: cells, neighbours, weights and boundary data.
   /// \param field the metric field; it and its triangulation must outlive this object
-  /// \param vim the vertex index map
-  /// \param cim the cell index map
   /// \throws Input_error if the domain's cell indices are not `0..n-1`, or
   ///         the domain is empty
-  explicit Frame_field_3(const Metric_field& field, VertexIndexMap vim = VertexIndexMap(),
-                         CellIndexMap cim = CellIndexMap())
-      : field_(&field), vim_(vim), cim_(cim), e_(field, vim, cim, domain_cells(field, cim)) {
+  explicit Frame_field_3(const Metric_field& field) : e_(field, domain_cells(field)) {
     stats_.tets = e_.size();
   }
 
@@ -206,7 +201,7 @@ public:
   std::size_t size() const { return e_.cells.size(); }
   /// The metric field.
   /// \returns the metric field given to the constructor
-  const Metric_field& metric_field() const { return *field_; }
+  const Metric_field& metric_field() const { return e_.field(); }
   /// The cell of tetrahedron `i`.
   /// \param i a tetrahedron index
   /// \returns the domain cell of index `i`
@@ -214,11 +209,11 @@ public:
   /// The tetrahedron index of a domain cell, or -1.
   /// \param c a cell
   /// \returns the index in `0..size()-1`, or -1 outside the domain
-  std::int64_t index(Cell_handle c) const { return get(cim_, c); }
+  std::int64_t index(Cell_handle c) const { return get(e_.field().cell_index_map(), c); }
   /// The 0-based index of a vertex.
   /// \param v a finite vertex
   /// \returns the index, from the vertex index map
-  std::size_t vertex_index(Vertex_handle v) const { return get(vim_, v); }
+  std::size_t vertex_index(Vertex_handle v) const { return get(e_.field().vertex_index_map(), v); }
 
   /// The rotation `R_i`, as `canonicalize_frame()` (a deterministic
   /// representative of `{R_i G}`).
@@ -358,11 +353,12 @@ public:
   }
 
 private:
-  using Energy = internal::Frame_field_energy_3<Metric_field, VertexIndexMap, CellIndexMap>;
+  using Energy = internal::Frame_field_energy_3<Metric_field>;
 
   // The domain's cells in index order; throws if the indices are not 0..n-1.
-  static std::vector<Cell_handle> domain_cells(const Metric_field& field, CellIndexMap cim) {
+  static std::vector<Cell_handle> domain_cells(const Metric_field& field) {
     const Triangulation& tr = field.triangulation();
+    const auto cim = field.cell_index_map();
     if (tr.dimension() != 3) throw Input_error("", 0, "", "the triangulation is not three-dimensional");
     std::size_t n = 0;
     for (Cell_handle c : tr.finite_cell_handles())
@@ -670,9 +666,6 @@ private:
     stats_.max_orthonormality_error = worst;
   }
 
-  const Metric_field* field_;
-  VertexIndexMap vim_;
-  CellIndexMap cim_;
   Frame_field_options opt_;
   Frame_field_statistics stats_;
   Energy e_;

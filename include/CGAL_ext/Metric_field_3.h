@@ -4,32 +4,22 @@
 #define CGAL_EXT_METRIC_FIELD_3_H
 
 /// \file Metric_field_3.h
-/// A piecewise-linear metric field on a tetrahedral mesh: the square root
-/// `A = g^{1/2}` per vertex, linear in each cell, its constant curl per cell
-/// and the connection one-form `W` (doc/math.md sections 1 to 3).
+/// A piecewise-linear metric field on a tetrahedral mesh that stores its
+/// per-vertex square roots `A = g^{1/2}`, linear in each cell, with its
+/// constant curl per cell and the connection one-form `W` (doc/math.md
+/// sections 1 to 3). `Property_map_metric_field_3` reads them from a map of
+/// the user's instead.
 
-#include <CGAL_ext/Connection_3.h>
 #include <CGAL_ext/Input_error.h>
 #include <CGAL_ext/Metric_tensor.h>
+#include <CGAL_ext/Property_map_metric_field_3.h>
 #include <CGAL_ext/Tet_mesh_triangulation_3.h>
 
-#include <CGAL/number_utils.h>
+#include <CGAL/property_map.h>
 
 #include <Eigen/Core>
-#include <Eigen/LU>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
-#include <algorithm>
-#include <array>
-#include <atomic>
 #include <cstddef>
-#include <cstdint>
-#include <iterator>
-#include <limits>
-#include <memory>
-#include <mutex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -39,46 +29,121 @@
 namespace CGAL_ext {
 
 namespace internal {
-// A point's coordinates as an Eigen vector of doubles.
-template <class Point_3>
-Eigen::Vector3d to_eigen_vector(const Point_3& p) {
-  return Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
-}
+
+// The square roots a Metric_field_3 stores, one per vertex index (has[i]:
+// whether index i has a vertex), and the lvalue map that reads them. A base
+// class of Metric_field_3, so that it is filled before the field is built.
+template <class Triangulation, class VertexIndexMap>
+struct Metric_field_storage_3 {
+  using Vertex_handle = typename Triangulation::Vertex_handle;
+
+  struct Map {
+    using key_type = Vertex_handle;
+    using value_type = Eigen::Matrix3d;
+    using reference = const Eigen::Matrix3d&;
+    using category = boost::lvalue_property_map_tag;
+    const std::vector<Eigen::Matrix3d>* roots;
+    VertexIndexMap vim;
+    friend reference get(const Map& m, key_type v) { return (*m.roots)[get(m.vim, v)]; }
+  };
+
+  std::vector<Eigen::Matrix3d> roots;
+  std::vector<char> has;
+
+  Metric_field_storage_3(const Triangulation& tr, const std::vector<Eigen::Matrix3d>& metrics,
+                         const std::string& source, VertexIndexMap vim) {
+    for (std::size_t i = 0; i < metrics.size(); ++i) {
+      const std::string why = check_metric_tensor(metrics[i]);
+      if (!why.empty()) throw Input_error(source, 0, metric_vertex_name(i), why);
+    }
+    for (Vertex_handle v : tr.finite_vertex_handles()) {
+      const std::size_t i = get(vim, v);
+      if (i >= metrics.size())
+        throw Input_error(source, 0, metric_vertex_name(i),
+                          "has no metric: only " + std::to_string(metrics.size()) + " metrics were given");
+    }
+    roots.resize(metrics.size());
+    has.assign(metrics.size(), 0);
+    for (Vertex_handle v : tr.finite_vertex_handles()) {
+      const std::size_t i = get(vim, v);
+      if (!has[i]) roots[i] = sqrt_spd(metrics[i]);
+      has[i] = 1;
+    }
+  }
+
+  template <class Function>
+  Metric_field_storage_3(const Triangulation& tr, Function& g, VertexIndexMap vim) {
+    resize_for_vertices(tr, vim);
+    for (Vertex_handle v : tr.finite_vertex_handles()) {
+      const Eigen::Matrix3d gv = g(v->point());
+      const std::string why = check_metric_tensor(gv);
+      if (!why.empty()) {
+        std::ostringstream s;
+        s << why << " at (" << v->point() << ")";
+        throw Input_error("", 0, metric_vertex_name(get(vim, v)), s.str());
+      }
+      roots[get(vim, v)] = sqrt_spd(gv);
+      has[get(vim, v)] = 1;
+    }
+  }
+
+  Metric_field_storage_3(const Triangulation& tr, const Eigen::Matrix3d& g, VertexIndexMap vim, int /*constant*/) {
+    const std::string why = check_metric_tensor(g);
+    if (!why.empty()) throw Input_error("", 0, "constant metric", why);
+    const Eigen::Matrix3d A = sqrt_spd(g); // one root, so all vertices are bitwise equal
+    resize_for_vertices(tr, vim);
+    for (Vertex_handle v : tr.finite_vertex_handles()) {
+      roots[get(vim, v)] = A;
+      has[get(vim, v)] = 1;
+    }
+  }
+
+  void resize_for_vertices(const Triangulation& tr, VertexIndexMap vim) {
+    std::size_t n = 0;
+    for (Vertex_handle v : tr.finite_vertex_handles()) n = std::max<std::size_t>(n, get(vim, v) + 1);
+    roots.resize(n);
+    has.assign(n, 0);
+  }
+
+  Map map(VertexIndexMap vim) const { return Map{&roots, vim}; }
+};
+
 } // namespace internal
 
 /// \ingroup PkgCGALExtMetric
 /// A metric field on the cells of a 3D triangulation, given by one SPD
-/// metric tensor `g` per vertex (an edge `e` has length `sqrt(e^T g e)`).
+/// metric tensor `g` per vertex (an edge `e` has length `sqrt(e^T g e)`),
+/// whose square roots it stores.
 ///
 /// - Stored per vertex: `A = g^{1/2}` (`sqrt_spd()`), indexed by the vertex
 ///   index of `VertexIndexMap`.
-/// - Inside a cell, **A (not g) is linear** in the barycentric coordinates
-///   (`A_at()`), so `A` is continuous and `curl A` is constant per cell
-///   (`curl()`), and `W = connection_one_form(A, curl A)` (`connection()`).
-/// - The per-cell data (inverse edge matrix, curl) is computed on first use
-///   and cached. Concurrent reads (`A_at`, `curl`, `connection`) from several
-///   threads are safe and give the same bits whatever the order;
-///   `precompute()` fills the whole cache in parallel with TBB.
-///   `set_metric()` and `put()` on `metric_map()` must not run concurrently
+/// - Everything else is `Property_map_metric_field_3` over these roots:
+///   **A (not g) is linear** in each cell (`A_at()`), `curl A` is constant
+///   per cell (`curl()`), `W = connection_one_form(A, curl A)`
+///   (`connection()`), the per-cell data is cached and safe to read from
+///   several threads, and the domain is given by the cell index map.
+/// - `set_metric()` and `put()` on `metric_map()` must not run concurrently
 ///   with anything else.
 ///
-/// Derivatives in a cell with vertices `p0..p3` use the edge matrix
-/// `E = [p1 - p0, p2 - p0, p3 - p0]`: the barycentric coordinates of `x`
-/// are `(1 - sum, E^{-1} (x - p0))`, so `d_k A = sum_{v=1..3} E^{-1}(v-1, k) (A_v - A_0)`.
-/// It is the `sum_v T[v][k] A_v` of doc/math.md section 2, written with
-/// differences so that a constant metric gives exactly zero curl.
+/// To use metric values kept elsewhere (a vertex's `info()`, a map of the
+/// user's) without copying them, use `Property_map_metric_field_3`.
 ///
-/// \tparam Triangulation a CGAL `Triangulation_3` (e.g. `Tet_mesh_triangulation_3<>`)
-/// \tparam VertexIndexMap a readable property map from `Vertex_handle` to a
-///         0-based `std::size_t` index; default: the file index `v->info()`
-/// \tparam CellIndexMap a readable property map from `Cell_handle` to a signed
-///         index, negative for cells outside the domain; default: the
+/// \tparam Triangulation a model of `TetMeshTriangulation_3` (e.g. `Tet_mesh_triangulation_3<>`)
+/// \tparam VertexIndexMap a model of `VertexIndexMap_3`; default: the file index `v->info()`
+/// \tparam CellIndexMap a model of `DomainCellIndexMap_3`; default: the
 ///         tetrahedron index `c->info().index`
 ///
 /// \cgalModels `MetricField_3`
 template <class Triangulation, class VertexIndexMap = Tet_mesh_vertex_index_map<Triangulation>,
           class CellIndexMap = Tet_mesh_cell_index_map<Triangulation>>
-class Metric_field_3 {
+class Metric_field_3
+    : private internal::Metric_field_storage_3<Triangulation, VertexIndexMap>,
+      public Property_map_metric_field_3<Triangulation,
+                                         typename internal::Metric_field_storage_3<Triangulation, VertexIndexMap>::Map,
+                                         VertexIndexMap, CellIndexMap> {
+  using Storage = internal::Metric_field_storage_3<Triangulation, VertexIndexMap>;
+  using Base = Property_map_metric_field_3<Triangulation, typename Storage::Map, VertexIndexMap, CellIndexMap>;
+
 public:
   /// The triangulation type.
   using Triangulation_3 = Triangulation;
@@ -102,27 +167,8 @@ public:
   Metric_field_3(const Triangulation& tr, const std::vector<Eigen::Matrix3d>& metrics,
                  const std::string& source = {}, VertexIndexMap vim = VertexIndexMap(),
                  CellIndexMap cim = CellIndexMap())
-      : tr_(&tr), vim_(vim), cim_(cim) {
-    for (std::size_t i = 0; i < metrics.size(); ++i) {
-      const std::string why = check_metric_tensor(metrics[i]);
-      if (!why.empty()) throw Input_error(source, 0, vertex_name(i), why);
-    }
-    std::size_t n = metrics.size();
-    for (Vertex_handle v : tr.finite_vertex_handles()) {
-      const std::size_t i = get(vim_, v);
-      if (i >= metrics.size())
-        throw Input_error(source, 0, vertex_name(i),
-                          "has no metric: only " + std::to_string(metrics.size()) + " metrics were given");
-    }
-    sqrt_.resize(n);
-    has_.assign(n, 0);
-    for (Vertex_handle v : tr.finite_vertex_handles()) {
-      const std::size_t i = get(vim_, v);
-      if (!has_[i]) sqrt_[i] = sqrt_spd(metrics[i]);
-      has_[i] = 1;
-    }
-    init_cells();
-  }
+      : Storage(tr, metrics, source, vim), Base(tr, Storage::map(vim), Vertex_metric_kind::sqrt_metric, vim, cim,
+                                                typename Base::Unchecked()) {}
 
   /// Builds the field by evaluating a function at every finite vertex.
   /// \tparam Function a callable `Eigen::Matrix3d(const Point_3&)` giving `g`
@@ -135,21 +181,8 @@ public:
             class = std::enable_if_t<std::is_invocable_r_v<Eigen::Matrix3d, Function&, const Point_3&>>>
   Metric_field_3(const Triangulation& tr, Function g, VertexIndexMap vim = VertexIndexMap(),
                  CellIndexMap cim = CellIndexMap())
-      : tr_(&tr), vim_(vim), cim_(cim) {
-    resize_for_vertices();
-    for (Vertex_handle v : tr.finite_vertex_handles()) {
-      const Eigen::Matrix3d gv = g(v->point());
-      const std::string why = check_metric_tensor(gv);
-      if (!why.empty()) {
-        std::ostringstream s;
-        s << why << " at (" << v->point() << ")";
-        throw Input_error("", 0, vertex_name(get(vim_, v)), s.str());
-      }
-      sqrt_[get(vim_, v)] = sqrt_spd(gv);
-      has_[get(vim_, v)] = 1;
-    }
-    init_cells();
-  }
+      : Storage(tr, g, vim), Base(tr, Storage::map(vim), Vertex_metric_kind::sqrt_metric, vim, cim,
+                                  typename Base::Unchecked()) {}
 
   /// Builds a constant field. Its curl and connection are exactly zero, and
   /// every transport in it is exactly the identity.
@@ -160,26 +193,14 @@ public:
   /// \throws Input_error if `g` is not a valid metric
   Metric_field_3(const Triangulation& tr, const Eigen::Matrix3d& g, VertexIndexMap vim = VertexIndexMap(),
                  CellIndexMap cim = CellIndexMap())
-      : tr_(&tr), vim_(vim), cim_(cim) {
-    const std::string why = check_metric_tensor(g);
-    if (!why.empty()) throw Input_error("", 0, "constant metric", why);
-    const Eigen::Matrix3d A = sqrt_spd(g); // one root, so all vertices are bitwise equal
-    resize_for_vertices();
-    for (Vertex_handle v : tr.finite_vertex_handles()) {
-      sqrt_[get(vim_, v)] = A;
-      has_[get(vim_, v)] = 1;
-    }
-    init_cells();
-  }
-
-  /// The triangulation.
-  /// \returns the triangulation given to the constructor
-  const Triangulation& triangulation() const { return *tr_; }
+      : Storage(tr, g, vim, 0), Base(tr, Storage::map(vim), Vertex_metric_kind::sqrt_metric, vim, cim,
+                                     typename Base::Unchecked()) {}
 
   /// The square root `A = g^{1/2}` at a vertex (symmetric positive definite).
   /// \param v a finite vertex
   /// \returns `A` at `v` (3x3)
-  const Eigen::Matrix3d& sqrt_metric(Vertex_handle v) const { return sqrt_[checked_index(v)]; }
+  /// \throws std::invalid_argument if `v` has no metric (its index was not given one)
+  const Eigen::Matrix3d& sqrt_metric(Vertex_handle v) const { return this->roots[checked_index(v)]; }
 
   /// The metric `g = A A` at a vertex.
   /// \param v a finite vertex
@@ -197,110 +218,9 @@ public:
   void set_metric(Vertex_handle v, const Eigen::Matrix3d& g) {
     const std::size_t i = checked_index(v);
     const std::string why = check_metric_tensor(g);
-    if (!why.empty()) throw Input_error("", 0, vertex_name(i), why);
-    sqrt_[i] = sqrt_spd(g);
-    std::vector<Cell_handle> cells;
-    tr_->incident_cells(v, std::back_inserter(cells));
-    for (Cell_handle c : cells) {
-      const std::int64_t k = static_cast<std::int64_t>(get(cim_, c));
-      if (k >= 0 && static_cast<std::size_t>(k) < n_cells_) cells_[k].ready.store(false, std::memory_order_release);
-    }
-  }
-
-  /// The barycentric coordinates of `p` in the cell `c`, in the order of
-  /// `c->vertex(0..3)`. They sum to 1; they are all in `[0, 1]` iff `p` is in `c`.
-  /// \param c a cell of the domain
-  /// \param p a point
-  /// \returns the four coordinates, summing to 1
-  Eigen::Vector4d barycentric_coordinates(Cell_handle c, const Point_3& p) const {
-    const Cell_data& d = data(c);
-    const Eigen::Vector3d l = d.inverse_edges * (internal::to_eigen_vector(p) - d.p0);
-    return Eigen::Vector4d(1 - l.sum(), l(0), l(1), l(2));
-  }
-
-  /// The square root `A` at a point, interpolated linearly in the cell `c`
-  /// (doc/math.md section 1). Outside `c` this extrapolates `c`'s linear field.
-  /// \param c a cell of the domain
-  /// \param p a point, normally in `c`
-  /// \returns `A(p)` (3x3, symmetric)
-  Eigen::Matrix3d A_at(Cell_handle c, const Point_3& p) const {
-    const Cell_data& d = data(c);
-    const Eigen::Vector3d l = d.inverse_edges * (internal::to_eigen_vector(p) - d.p0);
-    const Eigen::Matrix3d& A0 = sqrt_[get(vim_, c->vertex(0))];
-    Eigen::Matrix3d A = A0;
-    for (int v = 1; v < 4; ++v) A += l(v - 1) * (sqrt_[get(vim_, c->vertex(v))] - A0);
-    return A;
-  }
-
-  /// The curl of `A` in the cell `c`, constant in the cell (doc/math.md section 2):
-  /// column `i` is `curl` of column `i` of `A`,
-  /// `(d_y A(2,i) - d_z A(1,i), d_z A(0,i) - d_x A(2,i), d_x A(1,i) - d_y A(0,i))`.
-  /// Computed on first use and cached.
-  /// \param c a cell of the domain
-  /// \returns the 3x3 matrix of the curls of the columns of `A`
-  /// \throws std::invalid_argument if `c` is not a cell of the domain
-  /// \throws Input_error naming the tetrahedron if it is too flat for
-  ///         double precision (its edge matrix is singular once rounded);
-  ///         the same from every member that reads the cell's data, and
-  ///         from `precompute()`
-  const Eigen::Matrix3d& curl(Cell_handle c) const { return data(c).curl; }
-
-  /// The connection one-form `W` at a point of the cell `c` (doc/math.md section 3):
-  /// `connection_one_form(A_at(c, p), curl(c))`.
-  /// \param c a cell of the domain
-  /// \param p a point, normally in `c`
-  /// \returns `W` (3x3); column `k` holds the (dx, dy, dz) coefficients of
-  ///          the k-th of `(omega_23, omega_31, omega_12)`
-  Eigen::Matrix3d connection(Cell_handle c, const Point_3& p) const {
-    return connection_one_form(A_at(c, p), curl(c));
-  }
-
-  /// Computes the data of every cell of the domain now, in parallel (TBB).
-  /// The results are the same as those computed on demand.
-  void precompute() const {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, domain_cells_.size()),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t i = r.begin(); i != r.end(); ++i) data(domain_cells_[i]);
-                      });
-  }
-
-  /// Number of cells of the domain.
-  /// \returns the number of finite cells with a non-negative index
-  std::size_t number_of_domain_cells() const { return domain_cells_.size(); }
-
-  /// The volume of the cell `c` measured in the metric, `int_c det A dV`.
-  /// `det A` is a cubic polynomial in the cell, so Keast's degree-3 rule
-  /// (the centroid and four points at barycentric `(1/2, 1/6, 1/6, 1/6)`)
-  /// gives it exactly up to rounding. With unit length in the metric one
-  /// hexahedron edge, it is the number of hexahedra the cell asks for.
-  /// \param c a cell of the domain
-  /// \returns the metric volume of `c`
-  double metric_volume(Cell_handle c) const {
-    std::array<Eigen::Matrix3d, 4> A;
-    Eigen::Matrix3d E;
-    const Eigen::Vector3d p0 = internal::to_eigen_vector(c->vertex(0)->point());
-    for (int v = 0; v < 4; ++v) {
-      A[v] = sqrt_[get(vim_, c->vertex(v))];
-      if (v > 0) E.col(v - 1) = internal::to_eigen_vector(c->vertex(v)->point()) - p0;
-    }
-    const Eigen::Matrix3d sum = A[0] + A[1] + A[2] + A[3];
-    double q = -0.8 * (0.25 * sum).determinant();
-    for (int v = 0; v < 4; ++v) q += 0.45 * ((sum + 2 * A[v]) / 6).determinant();
-    return q * std::abs(E.determinant()) / 6;
-  }
-
-  /// The volume of the domain measured in the metric, the sum of
-  /// `metric_volume(c)` over its cells (in parallel, added in a fixed order:
-  /// the same bits whatever the number of threads).
-  /// \returns the metric volume of the domain
-  double metric_volume() const {
-    std::vector<double> v(domain_cells_.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, v.size()), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t i = r.begin(); i != r.end(); ++i) v[i] = metric_volume(domain_cells_[i]);
-    });
-    double total = 0;
-    for (double x : v) total += x;
-    return total;
+    if (!why.empty()) throw Input_error("", 0, internal::metric_vertex_name(i), why);
+    this->roots[i] = sqrt_spd(g);
+    this->forget_cells_around(v);
   }
 
   /// \ingroup PkgCGALExtMetric
@@ -352,155 +272,11 @@ public:
   Metric_map metric_map() { return Metric_map(*this); }
 
 private:
-  struct Cell_data {
-    std::atomic<bool> ready{false};
-    Eigen::Vector3d p0;
-    Eigen::Matrix3d inverse_edges; // E^{-1}, E = [p1 - p0, p2 - p0, p3 - p0]
-    Eigen::Matrix3d curl;
-  };
-
-  static std::string vertex_name(std::size_t i) { return "vertex " + std::to_string(i + 1); }
-  static std::string volume_text(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-  }
-
-
   std::size_t checked_index(Vertex_handle v) const {
-    const std::size_t i = get(vim_, v);
-    if (i >= has_.size() || !has_[i]) throw std::invalid_argument("Metric_field_3: vertex without a metric");
+    const std::size_t i = get(this->vertex_index_map(), v);
+    if (i >= this->has.size() || !this->has[i]) throw std::invalid_argument("Metric_field_3: vertex without a metric");
     return i;
   }
-
-  void resize_for_vertices() {
-    std::size_t n = 0;
-    for (Vertex_handle v : tr_->finite_vertex_handles()) n = std::max<std::size_t>(n, get(vim_, v) + 1);
-    sqrt_.resize(n);
-    has_.assign(n, 0);
-  }
-
-  void init_cells() {
-    std::int64_t max_index = -1;
-    // (long double: the extent of coordinates near +-1e308 does not overflow)
-    long double lo[3], hi[3];
-    for (int k = 0; k < 3; ++k) lo[k] = std::numeric_limits<long double>::infinity(), hi[k] = -lo[k];
-    for (Cell_handle c : tr_->finite_cell_handles()) {
-      const std::int64_t k = static_cast<std::int64_t>(get(cim_, c));
-      if (k < 0) continue;
-      domain_cells_.push_back(c);
-      max_index = std::max(max_index, k);
-      for (int v = 0; v < 4; ++v)
-        for (int a = 0; a < 3; ++a) {
-          const long double x = CGAL::to_double(c->vertex(v)->point()[a]);
-          lo[a] = std::min(lo[a], x);
-          hi[a] = std::max(hi[a], x);
-        }
-    }
-    if (!domain_cells_.empty()) check_extent(std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}));
-    n_cells_ = static_cast<std::size_t>(max_index + 1);
-    cells_.reset(new Cell_data[n_cells_]);
-  }
-  // Areas, volumes and their products with the metric are formed in double:
-  // within these lengths none of them overflows or underflows, and the
-  // results are the same for every unit of length (checked bit for bit under
-  // scalings by 2^+-150). Outside, a clear error rather than wrong numbers.
-
-public:
-  /// Throws `Input_error` naming `file` if the finite vertices of `tr` span
-  /// a size (the largest side of their bounding box) outside
-  /// [`supported_length_min`, `supported_length_max`], as the constructors
-  /// do for the domain: lets a pipeline refuse such a mesh before any other work.
-  /// \param tr the triangulation
-  /// \param file the mesh's file, for the message
-  static void check_extent(const Triangulation& tr, const std::string& file) {
-    long double lo[3], hi[3];
-    for (int k = 0; k < 3; ++k) lo[k] = std::numeric_limits<long double>::infinity(), hi[k] = -lo[k];
-    for (auto v : tr.finite_vertex_handles())
-      for (int k = 0; k < 3; ++k) {
-        const long double x = CGAL::to_double(v->point()[k]);
-        lo[k] = std::min(lo[k], x);
-        hi[k] = std::max(hi[k], x);
-      }
-    try {
-      check_extent(std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}));
-    } catch (const Input_error& e) {
-      throw Input_error(file, 0, e.element(), e.problem());
-    }
-  }
-
-  /// Throws `Input_error` if a mesh of size `extent` (the largest side of its
-  /// bounding box) is outside [`supported_length_min`, `supported_length_max`].
-  /// \param extent the largest side of the mesh's bounding box
-  static void check_extent(long double extent) {
-    if (extent >= supported_length_min && extent <= supported_length_max) return;
-    std::ostringstream s;
-    s.precision(6);
-    s << "spans " << extent << " (the largest side of its bounding box): the metric field computes in double with "
-      << "lengths between " << supported_length_min << " and " << supported_length_max
-      << "; change the unit of length (scale the coordinates)";
-    throw Input_error("", 0, "the mesh", s.str());
-  }
-
-public:
-  /// The range of mesh sizes (the largest side of the domain's bounding
-  /// box) that the metric field accepts: every computation in double stays
-  /// far from overflow and underflow there, so results do not depend on the
-  /// unit of length. The constructors throw `Input_error` outside it.
-  static constexpr double supported_length_min = 1e-60;
-  /// The largest accepted mesh size (see `supported_length_min`).
-  static constexpr double supported_length_max = 1e60;
-
-private:
-
-  // The cached data of c, computed on first use. Double-checked with a striped
-  // lock; the values depend only on c, so the order of threads does not matter.
-  const Cell_data& data(Cell_handle c) const {
-    const std::int64_t k = static_cast<std::int64_t>(get(cim_, c));
-    if (k < 0 || static_cast<std::size_t>(k) >= n_cells_)
-      throw std::invalid_argument("Metric_field_3: the cell is not a cell of the domain");
-    Cell_data& d = cells_[k];
-    if (d.ready.load(std::memory_order_acquire)) return d;
-    std::lock_guard<std::mutex> lock(locks_[static_cast<std::size_t>(k) % n_locks]);
-    if (d.ready.load(std::memory_order_relaxed)) return d;
-    compute(c, d);
-    d.ready.store(true, std::memory_order_release);
-    return d;
-  }
-
-  void compute(Cell_handle c, Cell_data& d) const {
-    d.p0 = internal::to_eigen_vector(c->vertex(0)->point());
-    Eigen::Matrix3d E;
-    for (int v = 1; v < 4; ++v) E.col(v - 1) = internal::to_eigen_vector(c->vertex(v)->point()) - d.p0;
-    d.inverse_edges = E.inverse();
-    // Exactly positive tets can be flat in double (a volume that underflows,
-    // or vertices that round onto a plane): no gradient exists there.
-    if (!(std::abs(E.determinant()) > 0) || !d.inverse_edges.allFinite())
-      throw Input_error("", 0, "tetrahedron " + std::to_string(static_cast<std::int64_t>(get(cim_, c)) + 1),
-                        "too flat for double precision: its volume is " + volume_text(std::abs(E.determinant()) / 6) +
-                            " in double");
-    const Eigen::Matrix3d& A0 = sqrt_[get(vim_, c->vertex(0))];
-    std::array<Eigen::Matrix3d, 3> dA; // dA[k] = d A / d x_k
-    for (int k = 0; k < 3; ++k) dA[k].setZero();
-    for (int v = 1; v < 4; ++v) {
-      const Eigen::Matrix3d diff = sqrt_[get(vim_, c->vertex(v))] - A0;
-      for (int k = 0; k < 3; ++k) dA[k] += d.inverse_edges(v - 1, k) * diff;
-    }
-    for (int i = 0; i < 3; ++i)
-      d.curl.col(i) = Eigen::Vector3d(dA[1](2, i) - dA[2](1, i), dA[2](0, i) - dA[0](2, i), dA[0](1, i) - dA[1](0, i));
-  }
-
-  static constexpr std::size_t n_locks = 64;
-
-  const Triangulation* tr_;
-  VertexIndexMap vim_;
-  CellIndexMap cim_;
-  std::vector<Eigen::Matrix3d> sqrt_;
-  std::vector<char> has_;
-  std::vector<Cell_handle> domain_cells_;
-  std::size_t n_cells_ = 0;
-  std::unique_ptr<Cell_data[]> cells_;
-  mutable std::array<std::mutex, n_locks> locks_;
 };
 
 } // namespace CGAL_ext

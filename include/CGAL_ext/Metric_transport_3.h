@@ -33,6 +33,20 @@
 
 namespace CGAL_ext {
 
+namespace internal {
+// The walk's domain predicate for a cell index map.
+template <class CellIndexMap>
+struct Domain_predicate_of {
+  using type = Is_indexed_domain_cell<CellIndexMap>;
+  static type make(CellIndexMap cim) { return type(cim); }
+};
+template <class Triangulation>
+struct Domain_predicate_of<Tet_mesh_cell_index_map<Triangulation>> {
+  using type = Is_tet_mesh_domain_cell;
+  static type make(Tet_mesh_cell_index_map<Triangulation>) { return type(); }
+};
+} // namespace internal
+
 /// \ingroup PkgCGALExtTransport
 /// The result of `Metric_transport_3`: the transport `T(a->b)`, or the reason
 /// why there is none.
@@ -124,16 +138,22 @@ struct Metric_transport_result {
 /// each one alone by the same code into its own slot, so its results are
 /// bit-identical for any number of threads and equal to single calls.
 ///
-/// \tparam Triangulation a CGAL `Triangulation_3` with positively oriented
-///         finite cells (e.g. `Tet_mesh_triangulation_3<>`)
-/// \tparam Domain_predicate the unary predicate on `Cell_handle` that is true
-///         for the domain cells (e.g. `Is_tet_mesh_domain_cell`); it must
-///         agree with the field's cell index map
-/// \tparam Metric_field a model of `MetricField_3` on `Triangulation`, by
-///         default `Metric_field_3<Triangulation>`
-template <class Triangulation, class Domain_predicate, class Metric_field = Metric_field_3<Triangulation>>
+/// **Domain.** The domain is the metric field's: the cells with a
+/// non-negative index in its cell index map (`MetricField_3::cell_index_map()`),
+/// so the walk, the field and a frame field on it always agree.
+///
+/// \tparam Metric_field a model of `MetricField_3` on a model of
+///         `TetMeshTriangulation_3` (positively oriented finite cells), by
+///         default `Metric_field_3<Tet_mesh_triangulation_3<>>`
+template <class Metric_field = Metric_field_3<Tet_mesh_triangulation_3<>>>
 class Metric_transport_3 {
 public:
+  /// The triangulation type.
+  using Triangulation = typename Metric_field::Triangulation_3;
+  /// The predicate that tells the field's domain cells to the walk:
+  /// `Is_tet_mesh_domain_cell` for the default cell index map (the walk that
+  /// the other components instantiate), else `Is_indexed_domain_cell`.
+  using Domain_predicate = typename internal::Domain_predicate_of<typename Metric_field::Cell_index_map>::type;
   /// The walk type.
   using Walk = Segment_walk_3<Triangulation, Domain_predicate>;
   /// Point type.
@@ -145,23 +165,18 @@ public:
   /// A piece of the walk.
   using Piece = Segment_walk_piece_3<Triangulation>;
 
-  static_assert(std::is_same<std::decay_t<decltype(std::declval<const Metric_field&>().triangulation())>,
-                             Triangulation>::value,
-                "Metric_transport_3: the metric field must be defined on the Triangulation");
-
   /// \param field the metric field; it must outlive the transporter and not
   ///        change while the transporter is in use
-  /// \param in_domain the domain predicate (the same domain as the field's)
   /// \throws std::invalid_argument if the triangulation has dimension < 3
-  Metric_transport_3(const Metric_field& field, Domain_predicate in_domain)
-      : field_(&field), walk_(field.triangulation(), std::move(in_domain)) {}
+  explicit Metric_transport_3(const Metric_field& field)
+      : field_(&field), walk_(field.triangulation(), internal::Domain_predicate_of<typename Metric_field::Cell_index_map>::make(field.cell_index_map())) {}
 
   /// The metric field.
   /// \returns the metric field given to the constructor
   const Metric_field& field() const { return *field_; }
 
   /// The walk used to cut segments into pieces.
-  /// \returns the walk, on the field's triangulation and the domain predicate
+  /// \returns the walk, on the field's triangulation and domain
   const Walk& walk() const { return walk_; }
 
   /// `T(a->b)` along the segment `[a, b]`.

@@ -83,14 +83,9 @@ enum class Feature_vertex_kind {
 /// not depend on the order of the triangulation's cells in memory.
 ///
 /// \tparam Metric_field a model of `MetricField_3`, such as `Metric_field_3<Tr>`
-///         (only `triangulation()` and `sqrt_metric(v)` are used)
-/// \tparam VertexIndexMap a readable property map from vertex handle to its
-///         0-based index
-/// \tparam CellIndexMap a readable property map from cell handle to a 0-based
-///         index, negative outside the domain
-template <class Metric_field,
-          class VertexIndexMap = Tet_mesh_vertex_index_map<typename Metric_field::Triangulation_3>,
-          class CellIndexMap = Tet_mesh_cell_index_map<typename Metric_field::Triangulation_3>>
+///         (its triangulation, `sqrt_metric(v)` and its index maps, which
+///         give the domain and name the vertices)
+template <class Metric_field>
 class Sharp_features_3 {
 public:
   /// The triangulation type.
@@ -112,12 +107,10 @@ public:
   /// \param field the metric field
   /// \param feature_angle_deg the threshold in degrees, in `[0, 180]`; 180 finds only the edges where
   ///        parts of the domain meet (other than two boundary facets)
-  /// \param vim the vertex index map
-  /// \param cim the cell index map (the domain: non-negative indices)
   /// \throws std::invalid_argument if the angle is not in `[0, 180]`
-  Sharp_features_3(const Metric_field& field, double feature_angle_deg, VertexIndexMap vim = VertexIndexMap(),
-                   CellIndexMap cim = CellIndexMap())
-      : angle_deg_(feature_angle_deg) {
+  Sharp_features_3(const Metric_field& field, double feature_angle_deg) : angle_deg_(feature_angle_deg) {
+    const auto vim = field.vertex_index_map();
+    const auto cim = field.cell_index_map();
     if (!(feature_angle_deg >= 0 && feature_angle_deg <= 180))
       throw std::invalid_argument("the feature angle must be in [0, 180] degrees (got " +
                                   std::to_string(feature_angle_deg) + ")");

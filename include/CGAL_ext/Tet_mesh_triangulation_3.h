@@ -121,6 +121,27 @@ struct Tet_mesh_cell_index_map {
   friend std::int64_t get(const Tet_mesh_cell_index_map&, const key_type& c) { return c->info().index; }
 };
 
+/// \ingroup PkgCGALExtMesh
+/// Unary predicate on cell handles: `true` for the cells of the domain that
+/// a cell index map defines (a model of `DomainCellIndexMap_3`: non-negative
+/// index). `Metric_transport_3` walks the metric field's domain with it, so
+/// that the walk and the field agree by construction.
+/// \tparam CellIndexMap a model of `DomainCellIndexMap_3`
+template <class CellIndexMap>
+class Is_indexed_domain_cell {
+public:
+  /// \param cim the cell index map
+  explicit Is_indexed_domain_cell(CellIndexMap cim = CellIndexMap()) : cim_(cim) {}
+  /// \tparam Cell_handle the map's key type
+  /// \param c the cell
+  /// \returns true if the index of `c` is non-negative
+  template <class Cell_handle>
+  bool operator()(const Cell_handle& c) const { return get(cim_, c) >= 0; }
+
+private:
+  CellIndexMap cim_;
+};
+
 } // namespace CGAL_ext
 
 #endif // CGAL_EXT_TET_MESH_TRIANGULATION_3_H

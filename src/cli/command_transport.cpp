@@ -77,7 +77,7 @@ int command_transport(const std::vector<std::string>& args) {
     pairs.emplace_back(Tr::Point(p.a[0], p.a[1], p.a[2]), Tr::Point(p.b[0], p.b[1], p.b[2]));
   timer.stage("read pairs");
 
-  const Metric_transport_3<Tr, Is_tet_mesh_domain_cell> transport(field, Is_tet_mesh_domain_cell());
+  const Metric_transport_3<Metric_field_3<Tr>> transport(field);
   std::vector<Metric_transport_result> results;
   transport.transport_batch(pairs, opt, results);
   timer.stage("transport");

@@ -133,8 +133,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         t = piece.t_out;
       }
     }
-    const CGAL_ext::Metric_transport_3<Tr, CGAL_ext::Is_tet_mesh_domain_cell> transport(
-        field, CGAL_ext::Is_tet_mesh_domain_cell());
+    const CGAL_ext::Metric_transport_3<Field> transport(field);
     CGAL_ext::Transport_options topt;
     topt.tolerance = 1e-8;
     for (const Point& end : {b, far}) {

@@ -42,9 +42,7 @@ namespace internal {
 /// The discrete energy of a frame field (see the file comment). The data
 /// are public: `Frame_field_3` and the coarse level read them directly.
 /// \tparam Metric_field as in `Frame_field_3`
-/// \tparam VertexIndexMap as in `Frame_field_3`
-/// \tparam CellIndexMap as in `Frame_field_3`
-template <class Metric_field, class VertexIndexMap, class CellIndexMap>
+template <class Metric_field>
 class Frame_field_energy_3 {
 public:
   using Triangulation = typename Metric_field::Triangulation_3;
@@ -70,12 +68,13 @@ public:
   };
 
   /// \param field the metric field (kept by address)
-  /// \param vim the vertex index map
-  /// \param cim the cell index map
   /// \param domain_cells the domain's cells, in index order
-  Frame_field_energy_3(const Metric_field& field, VertexIndexMap vim, CellIndexMap cim,
-                       std::vector<Cell_handle> domain_cells)
-      : cells(std::move(domain_cells)), field_(&field), vim_(vim), cim_(cim) {}
+  Frame_field_energy_3(const Metric_field& field, std::vector<Cell_handle> domain_cells)
+      : cells(std::move(domain_cells)), field_(&field), vim_(field.vertex_index_map()), cim_(field.cell_index_map()) {}
+
+  /// The metric field.
+  /// \returns the field given to the constructor
+  const Metric_field& field() const { return *field_; }
 
   /// The number of tetrahedra.
   std::size_t size() const { return cells.size(); }
@@ -311,8 +310,7 @@ private:
     boundary.clear();
     constraints.clear();
     stats.interior_faces = stats.boundary_faces = stats.hard_one_axis = stats.hard_two_axes = 0;
-    const Sharp_features_3<Metric_field, VertexIndexMap, CellIndexMap> features(*field_, opt.feature_angle_deg, vim_,
-                                                                               cim_);
+    const Sharp_features_3<Metric_field> features(*field_, opt.feature_angle_deg);
     stats.feature_edges = features.feature_edges().size();
     stats.feature_curve_vertices = features.number_of_curve_vertices();
     stats.feature_corners = features.number_of_corners();
@@ -514,8 +512,8 @@ private:
   }
 
   const Metric_field* field_;
-  VertexIndexMap vim_;
-  CellIndexMap cim_;
+  typename Metric_field::Vertex_index_map vim_;
+  typename Metric_field::Cell_index_map cim_;
 };
 
 } // namespace internal
