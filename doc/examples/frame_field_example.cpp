@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
   Tr tr;
   CGAL_ext::IO::read_tet_mesh(argv[1], tr);
   const double h = 0.1;
+  //! [frame_field]
   const Field field(tr, [h](const Tr::Point& p) {
     const double s = (1 + p.z()) * (1 + p.z()) / (h * h);
     return Eigen::Matrix3d(Eigen::Vector3d(s, 4 * s, s).asDiagonal());
@@ -72,6 +73,7 @@ int main(int argc, char** argv) {
   const CGAL_ext::Frame_field_matchings_3<CGAL_ext::Frame_field_3<Field>> matchings(ff);
   const auto singular = CGAL_ext::singular_edges(ff, matchings);
   const CGAL_ext::Singularity_graph graph = CGAL_ext::singularity_graph(ff, singular);
+  //! [frame_field]
   std::map<std::string, int> types;
   for (const CGAL_ext::Singular_edge& s : singular) ++types[singularity_type_name(s.type)];
   std::printf("singular edges:");

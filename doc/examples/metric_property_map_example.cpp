@@ -54,6 +54,7 @@ int main(int argc, char** argv) {
     const double z = mesh.vertices[i][2];
     g[i] = Eigen::Vector3d(1, 1 + 3 * z, 1).asDiagonal() * (1 / (h * h));
   }
+  //! [property_map]
   const CGAL_ext::Tet_mesh_vertex_index_map<Tr> vim;
   Field field(tr, Array_map(g.begin(), vim), CGAL_ext::Vertex_metric_kind::metric); // checks g, copies nothing
 
@@ -89,6 +90,7 @@ int main(int argc, char** argv) {
     ++changed;
   }
   const CGAL_ext::Metric_transport_result after = transport(a, b);
+  //! [property_map]
   std::printf("after refining g at %zu vertices: angle %.6f rad (was %.6f)\n", changed, after.angle, before.angle);
 
   return same && after.ok && changed > 0 && after.rotation != before.rotation && st.max_orthonormality_error < 1e-9

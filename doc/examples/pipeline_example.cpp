@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
     context.stage_seconds[name] = seconds;
   };
 
+  //! [pipeline]
   const CGAL_ext::Pipeline_tet_mesh mesh = CGAL_ext::load_tet_mesh(input, {}, stage);
 
   // g = diag(1, 4, 1) (1 + z)^2 per vertex, divided by h^2 below.
@@ -56,6 +57,7 @@ int main(int argc, char** argv) {
   CGAL_ext::write_pipeline_outputs(out_dir, mesh, frames);
   const std::string report =
       CGAL_ext::write_pipeline_report(out_dir, CGAL_ext::pipeline_report_json(mesh, field, frames, context));
+  //! [pipeline]
   std::printf("%s  wrote %s and the files of CubeCover and ParaView\n",
               CGAL_ext::pipeline_summary_text(mesh, field, frames, context).c_str(), report.c_str());
   return 0;

@@ -63,6 +63,7 @@ int main(int argc, char** argv) {
   //    with the cell of its start point as the hint. fast_batch interleaves
   //    their walks (which pays on meshes larger than the cache) and calls
   //    back with the query index; the pieces of each query come in order.
+  //! [batch]
   std::vector<Walk::Query> queries;
   for (int i = 0; i < 10; ++i)
     for (int j = 0; j < 10; ++j) {
@@ -73,6 +74,7 @@ int main(int argc, char** argv) {
   walk.fast_batch(queries, [&](std::size_t i, const Piece& piece) {
     if (piece.dimension >= 0) inside[i] += piece.t_out - piece.t_in;
   });
+  //! [batch]
   int in_hole = 0, in_solid = 0;
   for (double x : inside) {
     in_hole += x == 0.0;

@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
     std::cerr << e.what() << "\n";
     return 1;
   }
+  //! [transport]
   const Field field(tr, metric); // A = g^{1/2} per vertex, linear in each tet
   field.precompute();            // the per-cell curls, in parallel
   const Transport transport(field);
@@ -71,6 +72,7 @@ int main(int argc, char** argv) {
   std::vector<CGAL_ext::Metric_transport_result> out;
   transport.transport_batch(pairs, opt, out);
   const bool same = out[0].rotation == ab.rotation && out[1].rotation == ba.rotation;
+  //! [transport]
   std::cout << "batch of " << out.size() << ": " << (same ? "equal to single calls" : "DIFFERENT") << "\n";
 
   return reversal <= 2 * opt.tolerance && !across.ok && same && ab.angle > 1e-3 ? 0 : 1;
