@@ -473,42 +473,7 @@ private:
     stats_.degenerate_projections = std::count(degenerate.begin(), degenerate.end(), 1);
   }
 
-  // The `propagated` start of reoptimize(): breadth-first from the fixed
-  // neighbours, each frame transported from the tetrahedron that reached it
-  // (its first facet towards one). False, with nothing changed, if no fixed
-  // neighbour reaches some of the tetrahedra.
-  // `local` gives the position of a tetrahedron in `tets`, or size_t(-1).
-  bool propagate(const std::vector<std::size_t>& tets, const std::vector<std::size_t>& local) {
-    const std::size_t none = std::size_t(-1);
-    std::vector<std::size_t> queue;
-    std::vector<char> done(tets.size(), 0);
-    std::vector<Eigen::Quaterniond> q(tets.size());
-    auto reach = [&](std::size_t k, std::size_t i, int f, const Eigen::Quaterniond& from) {
-      q[k] = e_.links[i].identity[f] ? from : (e_.links[i].T_in[f] * from).normalized();
-      done[k] = 1;
-      queue.push_back(k);
-    };
-    for (std::size_t k = 0; k < tets.size(); ++k)
-      for (int f = 0; f < 4; ++f) {
-        const std::int64_t j = e_.links[tets[k]].nb[f];
-        if (j >= 0 && local[j] == none) {
-          reach(k, tets[k], f, q_[j]);
-          break;
-        }
-      }
-    for (std::size_t head = 0; head < queue.size(); ++head) {
-      const std::size_t i = tets[queue[head]];
-      for (int f = 0; f < 4; ++f) {
-        const std::int64_t j = e_.links[i].nb[f];
-        if (j < 0 || local[j] == none || done[local[j]]) continue;
-        const int fj = e_.cells[j]->index(e_.cells[i]);
-        reach(local[j], std::size_t(j), fj, q[queue[head]]);
-      }
-    }
-    if (queue.size() < tets.size()) return false;
-    for (std::size_t k = 0; k < tets.size(); ++k) q_[tets[k]] = q[k];
-    return true;
-  }
+  bool propagate(const std::vector<std::size_t>& tets, const std::vector<std::size_t>& local);
 
   // The tetrahedra an L-BFGS run turns: all of them, or a list (the others
   // fixed, their faces with the list counted once, from the list's side).
@@ -520,133 +485,13 @@ private:
     bool active(std::int64_t j) const { return !list || marked[std::size_t(j)]; }
   };
 
-  // The `relaxed` start of reoptimize(): the linear initialisation on the
-  // list (H x = b with the frames outside on the right-hand side), projected
-  // onto rotations. `local` as in propagate().
-  void relax(const std::vector<std::size_t>& tets, const Active_set& set, const std::vector<std::size_t>& local) {
-    const std::size_t m = tets.size();
-    std::vector<Sh_vector> x(m, Sh_vector::Zero()), b(m, Sh_vector::Zero());
-    internal::parallel_for_each_index(m, [&](std::size_t k) {
-      const std::size_t i = tets[k];
-      if (e_.constraint_of[i] >= 0) b[k] = e_.constraints[e_.constraint_of[i]].b;
-      for (int f = 0; f < 4; ++f)
-        if (e_.links[i].nb[f] >= 0 && !set.marked[e_.links[i].nb[f]]) b[k] += e_.links[i].w[f] * e_.neighbour_sh(i, f, s_);
-    });
-    auto apply = [&](const std::vector<Sh_vector>& v, std::vector<Sh_vector>& y) {
-      internal::parallel_for_each_index(m, [&](std::size_t k) {
-        const std::size_t i = tets[k];
-        const auto& L = e_.links[i];
-        Sh_vector r = e_.diagonal[i] * v[k];
-        for (int f = 0; f < 4; ++f) {
-          if (L.nb[f] < 0 || !set.marked[L.nb[f]]) continue;
-          const Sh_vector& vj = v[local[L.nb[f]]];
-          r -= L.w[f] * (L.identity[f] ? vj : Sh_vector(rotate_sh(L.T_in[f], vj)));
-        }
-        if (e_.constraint_of[i] >= 0) r += e_.constraints[e_.constraint_of[i]].B * v[k];
-        y[k] = r;
-      });
-    };
-    double residual = 0;
-    pcg(x, b, apply, [&](std::size_t k, const Sh_vector& r) { return e_.precondition(tets[k], r); }, 1e-8, nullptr,
-        residual);
-    internal::parallel_for_each_index(m, [&](std::size_t k) {
-      if (x[k].norm() > 1e-9) q_[tets[k]] = Eigen::Quaterniond(rotation_from_octahedral_sh(x[k]).rotation);
-    });
-  }
+  void relax(const std::vector<std::size_t>& tets, const Active_set& set, const std::vector<std::size_t>& local);
 
-  // The refinement energy (smoothness + soft boundary terms) of the active
-  // tetrahedra and its gradient in their left-trivialised rotation
-  // increments, projected on the free axes; the frames are s_.
-  double energy_and_gradient(const Active_set& set, std::vector<Eigen::Vector3d>* g) const {
-    return internal::deterministic_sum(set.n, [&](std::size_t first, std::size_t last) {
-      double e = 0;
-      for (std::size_t k = first; k < last; ++k) {
-        const std::size_t i = set.tet(k);
-        const auto& L = e_.links[i];
-        Sh_vector grad = Sh_vector::Zero();
-        for (int f = 0; f < 4; ++f) {
-          if (L.nb[f] < 0) continue;
-          const Sh_vector r = s_[i] - e_.neighbour_sh(i, f, s_);
-          // A face between two active tetrahedra is seen from both sides.
-          e += (set.active(L.nb[f]) ? 0.5 : 1.0) * L.w[f] * r.squaredNorm();
-          grad += (2 * L.w[f]) * r;
-        }
-        const std::int64_t c = e_.constraint_of[i];
-        if (c >= 0) {
-          const auto& C = e_.constraints[c];
-          const Sh_vector Bs = C.B * s_[i];
-          e += s_[i].dot(Bs) - 2 * C.b.dot(s_[i]) + C.c;
-          grad += 2 * (Bs - C.b);
-        }
-        if (g) {
-          Eigen::Vector3d gi = sh_rotation_jacobian(s_[i]).transpose() * grad;
-          if (opt_.hard_boundary && c >= 0) {
-            const auto& C = e_.constraints[c];
-            gi = C.axes == 2 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(gi.dot(C.d1) * C.d1);
-          }
-          (*g)[k] = gi;
-        }
-      }
-      return e;
-    });
-  }
+  double energy_and_gradient(const Active_set& set, std::vector<Eigen::Vector3d>* g) const;
 
-  void refine() {
-    Active_set all;
-    all.n = size();
-    int evaluations = 0;
-    stats_.refinement_iterations = lbfgs(all, evaluations, stats_.refinement_iteration_limit_reached, "refinement");
-    stats_.energy_evaluations = evaluations;
-  }
+  void refine();
 
-  // L-BFGS on the rotations of the active tetrahedra, until the energy
-  // converges (see `energy_tolerance`). Returns the iterations; `evaluations`
-  // gets the energy evaluations, `limit` whether the iteration bound stopped
-  // it. `stage` names the iterations for the progress callback (or null).
-  int lbfgs(const Active_set& set, int& evaluations, bool& limit, const char* stage) {
-    const std::size_t n = set.n;
-    evaluations = 0;
-    limit = false;
-    if (opt_.max_refinement_iterations <= 0 || n == 0) return 0;
-    const Sh_vector s0 = octahedral_reference_sh();
-    // d^2 E / dw_i^2 ~ 2 (sum of the weights of i) J^T J, and J^T J = (20/3) I.
-    std::vector<double> inverse_diagonal(n);
-    for (std::size_t k = 0; k < n; ++k) {
-      double sum = 0;
-      for (int f = 0; f < 4; ++f) sum += e_.links[set.tet(k)].w[f];
-      inverse_diagonal[k] = sum > 0 ? 3 / (40 * sum) : 1;
-    }
-    // The accepted rotations; trial steps are written into q_ and s_.
-    std::vector<Eigen::Quaterniond> q_old(n);
-    for (std::size_t k = 0; k < n; ++k) q_old[k] = q_[set.tet(k)];
-    internal::Lbfgs_settings settings;
-    settings.max_iterations = opt_.max_refinement_iterations;
-    settings.memory = opt_.lbfgs_memory;
-    settings.energy_tolerance = opt_.energy_tolerance;
-    settings.floor_energy = 1e-14 * std::max(e_.total_weight, 1e-300);
-    const internal::Lbfgs_outcome out = internal::lbfgs_on_rotations(
-        inverse_diagonal, [&](std::vector<Eigen::Vector3d>& g) { return energy_and_gradient(set, &g); },
-        [&](const std::vector<Eigen::Vector3d>& p, double step) {
-          internal::parallel_for_each_index(n, [&](std::size_t k) {
-            const std::size_t i = set.tet(k);
-            q_[i] = step == 0 ? q_old[k] : (internal::oct_quaternion_exp(step * p[k]) * q_old[k]).normalized();
-            s_[i] = rotate_sh(q_[i], s0);
-          });
-        },
-        [&] { internal::parallel_for_each_index(n, [&](std::size_t k) { q_old[k] = q_[set.tet(k)]; }); },
-        [&](int it, double E) {
-          if (stage && opt_.iteration_progress) opt_.iteration_progress(stage, it, std::ldexp(E, e_.weight_exponent));
-        },
-        settings);
-    evaluations = out.evaluations;
-    limit = out.limit;
-    if (opt_.hard_boundary) // undo the rounding drift of the constrained axes
-      internal::parallel_for_each_index(n, [&](std::size_t k) {
-        const std::size_t i = set.tet(k);
-        if (e_.constraint_of[i] >= 0) constrain(i);
-      });
-    return out.iterations;
-  }
+  int lbfgs(const Active_set& set, int& evaluations, bool& limit, const char* stage);
 
   void measure() {
     double sum = 0, mx = 0;
@@ -675,5 +520,7 @@ private:
 };
 
 } // namespace CGAL_ext
+
+#include <CGAL_ext/internal/Frame_field_3_refinement.h>
 
 #endif // CGAL_EXT_FRAME_FIELD_3_H

@@ -23,7 +23,7 @@ namespace CGAL_ext {
 /// as fallback when the visibility walk meets the boundary of a non-convex
 /// domain); no cell is ever scanned linearly.
 ///
-/// \tparam Triangulation a CGAL `Triangulation_3`, as for `Segment_walk_3`
+/// \tparam Triangulation a model of `TetMeshTriangulation_3`, as for `Segment_walk_3`
 /// \tparam Domain_predicate a unary predicate on `Cell_handle`, true for the domain cells
 template <class Triangulation, class Domain_predicate = Is_finite_cell<Triangulation>>
 class Point_locator_3 {

@@ -109,12 +109,11 @@ public:
   ///        parts of the domain meet (other than two boundary facets)
   /// \throws std::invalid_argument if the angle is not in `[0, 180]`
   Sharp_features_3(const Metric_field& field, double feature_angle_deg) : angle_deg_(feature_angle_deg) {
-    const auto vim = field.vertex_index_map();
-    const auto cim = field.cell_index_map();
     if (!(feature_angle_deg >= 0 && feature_angle_deg <= 180))
       throw std::invalid_argument("the feature angle must be in [0, 180] degrees (got " +
                                   std::to_string(feature_angle_deg) + ")");
     const Triangulation& tr = field.triangulation();
+    const auto vim = field.vertex_index_map();
     std::size_t nv = 0;
     for (Vertex_handle v : tr.finite_vertex_handles()) nv = std::max<std::size_t>(nv, get(vim, v) + 1);
     vertices_.assign(nv, Vertex_handle());
@@ -122,100 +121,10 @@ public:
     kind_.assign(nv, Feature_vertex_kind::none);
     axes_.assign(nv, Eigen::Matrix3d::Zero());
     const double cos_angle = std::cos(feature_angle_deg * M_PI / 180);
-
-    // Boundary facets, in the order of their sorted vertex triples.
-    for (Cell_handle c : tr.finite_cell_handles()) {
-      if (get(cim, c) < 0) continue;
-      for (int f = 0; f < 4; ++f) {
-        const Cell_handle nc = c->neighbor(f);
-        if (!tr.is_infinite(nc) && get(cim, nc) >= 0) continue;
-        Facet b;
-        for (int k = 0, m = 0; k < 4; ++k)
-          if (k != f) b.v[m++] = get(vim, c->vertex(k));
-        std::sort(b.v.begin(), b.v.end());
-        Eigen::Vector3d centroid;
-        internal::boundary_facet_geometry(c, f, centroid, b.normal, b.area);
-        facets_.push_back(b);
-      }
-    }
-    std::sort(facets_.begin(), facets_.end(), [](const Facet& a, const Facet& b) { return a.v < b.v; });
-
-    // Boundary edges with their facets; the feature edges.
-    std::vector<std::tuple<std::size_t, std::size_t, std::size_t>> edge_facet; // (a, b, facet)
-    for (std::size_t i = 0; i < facets_.size(); ++i)
-      for (int k = 0; k < 3; ++k)
-        for (int m = k + 1; m < 3; ++m) edge_facet.emplace_back(facets_[i].v[k], facets_[i].v[m], i);
-    std::sort(edge_facet.begin(), edge_facet.end());
-    for (std::size_t first = 0; first < edge_facet.size();) {
-      std::size_t last = first;
-      while (last < edge_facet.size() && std::get<0>(edge_facet[last]) == std::get<0>(edge_facet[first]) &&
-             std::get<1>(edge_facet[last]) == std::get<1>(edge_facet[first]))
-        ++last;
-      const std::size_t a = std::get<0>(edge_facet[first]), b = std::get<1>(edge_facet[first]);
-      Feature_edge e{a, b, 180, int(last - first)};
-      bool feature = e.facets != 2;
-      if (!feature) {
-        // A is linear along the edge: its value at the midpoint is the mean.
-        const Eigen::Matrix3d A_inv =
-            scaled_inverse(0.5 * (field.sqrt_metric(vertices_[a]) + field.sqrt_metric(vertices_[b])));
-        const Eigen::Vector3d d0 = (A_inv * facets_[std::get<2>(edge_facet[first])].normal).normalized();
-        const Eigen::Vector3d d1 = (A_inv * facets_[std::get<2>(edge_facet[first + 1])].normal).normalized();
-        const double c = std::max(-1.0, std::min(1.0, d0.dot(d1)));
-        e.angle_deg = std::acos(c) * 180 / M_PI;
-        feature = c < cos_angle;
-      }
-      if (feature) edges_.push_back(e);
-      first = last;
-    }
-
-    // Feature curves of fewer than 3 edges that meet no other feature (a
-    // lone kink between two facets of a coarsely meshed smooth surface, e.g.
-    // Mesh_3's torus at the diagonal / 20) are dropped: every tetrahedron
-    // around their ends would take a corner's frame that fits none of the
-    // surface. Edges where parts of the domain meet are always kept.
-    {
-      std::vector<std::size_t> parent(nv);
-      for (std::size_t v = 0; v < nv; ++v) parent[v] = v;
-      auto root = [&](std::size_t v) {
-        while (parent[v] != v) v = parent[v] = parent[parent[v]];
-        return v;
-      };
-      for (const Feature_edge& e : edges_) parent[root(e.source)] = root(e.target);
-      std::vector<std::size_t> size(nv, 0);
-      for (const Feature_edge& e : edges_) ++size[root(e.source)];
-      std::vector<Feature_edge> kept;
-      for (const Feature_edge& e : edges_)
-        if (e.facets != 2 || size[root(e.source)] >= 3) kept.push_back(e);
-        else ++dropped_;
-      edges_.swap(kept);
-    }
-
-    // Vertices: the feature edges at each vertex, and its incident facets.
-    std::vector<std::vector<std::size_t>> edges_at(nv), facets_at(nv);
-    for (std::size_t k = 0; k < edges_.size(); ++k) {
-      edges_at[edges_[k].source].push_back(k);
-      edges_at[edges_[k].target].push_back(k);
-    }
-    for (std::size_t i = 0; i < facets_.size(); ++i)
-      for (std::size_t v : facets_[i].v) facets_at[v].push_back(i);
-    for (std::size_t v = 0; v < nv; ++v) {
-      const std::vector<std::size_t>& at = edges_at[v];
-      if (at.empty()) continue;
-      const Eigen::Matrix3d A = scaled(field.sqrt_metric(vertices_[v])); // only directions are used
-      if (at.size() == 2) {
-        const Eigen::Vector3d e0 = direction_from(v, edges_[at[0]]), e1 = direction_from(v, edges_[at[1]]);
-        // Turning angle in the metric: between -A e0 and A e1.
-        if (-(A * e0).normalized().dot((A * e1).normalized()) >= cos_angle) {
-          kind_[v] = Feature_vertex_kind::curve;
-          axes_[v].col(0) = (e1 - e0).normalized();
-          ++curve_vertices_;
-          continue;
-        }
-      }
-      kind_[v] = Feature_vertex_kind::corner;
-      ++corners_;
-      axes_[v] = corner_axes(v, A, at, facets_at[v]);
-    }
+    find_boundary_facets(field);
+    find_feature_edges(field, cos_angle);
+    drop_short_curves();
+    classify_vertices(field, cos_angle);
   }
 
   /// The feature angle in degrees.
@@ -287,6 +196,112 @@ public:
   std::size_t number_of_boundary_facets() const { return facets_.size(); }
 
 private:
+  // The boundary facets of the domain, in the order of their sorted vertex triples.
+  void find_boundary_facets(const Metric_field& field) {
+    const Triangulation& tr = field.triangulation();
+    const auto vim = field.vertex_index_map();
+    const auto cim = field.cell_index_map();
+    for (Cell_handle c : tr.finite_cell_handles()) {
+      if (get(cim, c) < 0) continue;
+      for (int f = 0; f < 4; ++f) {
+        const Cell_handle nc = c->neighbor(f);
+        if (!tr.is_infinite(nc) && get(cim, nc) >= 0) continue;
+        Facet b;
+        for (int k = 0, m = 0; k < 4; ++k)
+          if (k != f) b.v[m++] = get(vim, c->vertex(k));
+        std::sort(b.v.begin(), b.v.end());
+        Eigen::Vector3d centroid;
+        internal::boundary_facet_geometry(c, f, centroid, b.normal, b.area);
+        facets_.push_back(b);
+      }
+    }
+    std::sort(facets_.begin(), facets_.end(), [](const Facet& a, const Facet& b) { return a.v < b.v; });
+  }
+
+  // The boundary edges with their facets; the feature edges among them.
+  void find_feature_edges(const Metric_field& field, double cos_angle) {
+    std::vector<std::tuple<std::size_t, std::size_t, std::size_t>> edge_facet; // (a, b, facet)
+    for (std::size_t i = 0; i < facets_.size(); ++i)
+      for (int k = 0; k < 3; ++k)
+        for (int m = k + 1; m < 3; ++m) edge_facet.emplace_back(facets_[i].v[k], facets_[i].v[m], i);
+    std::sort(edge_facet.begin(), edge_facet.end());
+    for (std::size_t first = 0; first < edge_facet.size();) {
+      std::size_t last = first;
+      while (last < edge_facet.size() && std::get<0>(edge_facet[last]) == std::get<0>(edge_facet[first]) &&
+             std::get<1>(edge_facet[last]) == std::get<1>(edge_facet[first]))
+        ++last;
+      const std::size_t a = std::get<0>(edge_facet[first]), b = std::get<1>(edge_facet[first]);
+      Feature_edge e{a, b, 180, int(last - first)};
+      bool feature = e.facets != 2;
+      if (!feature) {
+        // A is linear along the edge: its value at the midpoint is the mean.
+        const Eigen::Matrix3d A_inv =
+            scaled_inverse(0.5 * (field.sqrt_metric(vertices_[a]) + field.sqrt_metric(vertices_[b])));
+        const Eigen::Vector3d d0 = (A_inv * facets_[std::get<2>(edge_facet[first])].normal).normalized();
+        const Eigen::Vector3d d1 = (A_inv * facets_[std::get<2>(edge_facet[first + 1])].normal).normalized();
+        const double c = std::max(-1.0, std::min(1.0, d0.dot(d1)));
+        e.angle_deg = std::acos(c) * 180 / M_PI;
+        feature = c < cos_angle;
+      }
+      if (feature) edges_.push_back(e);
+      first = last;
+    }
+  }
+
+  // Feature curves of fewer than 3 edges that meet no other feature (a
+  // lone kink between two facets of a coarsely meshed smooth surface, e.g.
+  // Mesh_3's torus at the diagonal / 20) are dropped: every tetrahedron
+  // around their ends would take a corner's frame that fits none of the
+  // surface. Edges where parts of the domain meet are always kept.
+  void drop_short_curves() {
+    const std::size_t nv = vertices_.size();
+    std::vector<std::size_t> parent(nv);
+    for (std::size_t v = 0; v < nv; ++v) parent[v] = v;
+    auto root = [&](std::size_t v) {
+      while (parent[v] != v) v = parent[v] = parent[parent[v]];
+      return v;
+    };
+    for (const Feature_edge& e : edges_) parent[root(e.source)] = root(e.target);
+    std::vector<std::size_t> size(nv, 0);
+    for (const Feature_edge& e : edges_) ++size[root(e.source)];
+    std::vector<Feature_edge> kept;
+    for (const Feature_edge& e : edges_)
+      if (e.facets != 2 || size[root(e.source)] >= 3) kept.push_back(e);
+      else ++dropped_;
+    edges_.swap(kept);
+  }
+
+  // Vertices: the feature edges at each vertex, and its incident facets,
+  // make it a curve vertex (with its tangent) or a corner (with its axes).
+  void classify_vertices(const Metric_field& field, double cos_angle) {
+    const std::size_t nv = vertices_.size();
+    std::vector<std::vector<std::size_t>> edges_at(nv), facets_at(nv);
+    for (std::size_t k = 0; k < edges_.size(); ++k) {
+      edges_at[edges_[k].source].push_back(k);
+      edges_at[edges_[k].target].push_back(k);
+    }
+    for (std::size_t i = 0; i < facets_.size(); ++i)
+      for (std::size_t v : facets_[i].v) facets_at[v].push_back(i);
+    for (std::size_t v = 0; v < nv; ++v) {
+      const std::vector<std::size_t>& at = edges_at[v];
+      if (at.empty()) continue;
+      const Eigen::Matrix3d A = scaled(field.sqrt_metric(vertices_[v])); // only directions are used
+      if (at.size() == 2) {
+        const Eigen::Vector3d e0 = direction_from(v, edges_[at[0]]), e1 = direction_from(v, edges_[at[1]]);
+        // Turning angle in the metric: between -A e0 and A e1.
+        if (-(A * e0).normalized().dot((A * e1).normalized()) >= cos_angle) {
+          kind_[v] = Feature_vertex_kind::curve;
+          axes_[v].col(0) = (e1 - e0).normalized();
+          ++curve_vertices_;
+          continue;
+        }
+      }
+      kind_[v] = Feature_vertex_kind::corner;
+      ++corners_;
+      axes_[v] = corner_axes(v, A, at, facets_at[v]);
+    }
+  }
+
   struct Facet {
     std::array<std::size_t, 3> v;
     Eigen::Vector3d normal;

@@ -204,121 +204,13 @@ public:
     // The heavy loops run in parallel (TBB): each writes its own entries,
     // and the sort keys are unique, so the result does not depend on the
     // number of threads.
-    // Domain cells, and the slot tables of cells and vertices. (The domain
-    // predicate is called concurrently, as during concurrent walks.)
-    std::vector<Cell_handle> all;
-    all.reserve(tr.tds().number_of_cells());
-    for (auto c = tr.tds().cells_begin(); c != tr.tds().cells_end(); ++c) {
-      cell_index_.push_back(c);
-      all.push_back(c);
-    }
-    cell_index_.finish();
-    std::vector<std::uint32_t> all_slot(all.size());
-    std::vector<std::uint8_t> keep(all.size());
-    parallel(all.size(), [&](std::size_t i) {
-      all_slot[i] = cell_index_(all[i]);
-      keep[i] = !tr.is_infinite(all[i]) && in_domain(all[i]);
-    });
-    std::vector<Cell_handle> domain;
-    domain.reserve(all.size());
-    std::vector<std::uint32_t> slot_to_domain(cell_index_.size(), outside);
-    for (std::size_t i = 0; i < all.size(); ++i) {
-      if (!keep[i]) continue;
-      slot_to_domain[all_slot[i]] = std::uint32_t(domain.size());
-      domain.push_back(all[i]);
-    }
+    std::vector<std::uint32_t> slot_to_domain;
+    const std::vector<Cell_handle> domain = domain_cells(tr, in_domain, slot_to_domain);
     if (domain.size() >= (std::size_t(1) << 30)) return; // links keep 30 bits for the index; not valid()
-    Handle_index<Vertex_handle> vertex_slots;
-    for (auto v = tr.tds().vertices_begin(); v != tr.tds().vertices_end(); ++v) vertex_slots.push_back(v);
-    vertex_slots.finish();
-
-    // Vertices of domain cells, then their Morton order.
-    std::vector<std::uint32_t> vertex_id(vertex_slots.size(), outside);
-    std::vector<Vertex_record> used; // in the order first met
-    for (int d = 0; d < 3; ++d) {
-      lo[d] = std::numeric_limits<double>::infinity();
-      hi[d] = -std::numeric_limits<double>::infinity();
-    }
-    std::vector<std::array<std::int32_t, 4>> cell_vertices(domain.size()); // vertex slots, then ids
-    parallel(domain.size(), [&](std::size_t ci) {
-      for (int i = 0; i < 4; ++i) cell_vertices[ci][i] = std::int32_t(vertex_slots(domain[ci]->vertex(i)));
-    });
-    for (std::size_t ci = 0; ci < domain.size(); ++ci)
-      for (int i = 0; i < 4; ++i) {
-        const Cell_handle c = domain[ci];
-        const std::uint32_t slot = std::uint32_t(cell_vertices[ci][i]);
-        std::uint32_t& id = vertex_id[slot];
-        if (id != outside) continue;
-        id = std::uint32_t(used.size());
-        Vertex_record r;
-        r.handle = c->vertex(i);
-        for (int d = 0; d < 3; ++d) {
-          r.xyz[d] = CGAL::to_double(r.handle->point()[d]);
-          lo[d] = std::min(lo[d], r.xyz[d]);
-          hi[d] = std::max(hi[d], r.xyz[d]);
-        }
-        used.push_back(r);
-      }
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> key(used.size());
-    parallel(used.size(), [&](std::size_t i) { key[i] = {morton(used[i].xyz), std::uint32_t(i)}; });
-    tbb::parallel_sort(key.begin(), key.end());
-    std::vector<std::uint32_t> order(used.size());
-    vertices.resize(used.size());
-    for (std::size_t i = 0; i < key.size(); ++i) {
-      order[key[i].second] = std::uint32_t(i);
-      vertices[i] = used[key[i].second];
-    }
-    for (std::uint32_t& id : vertex_id)
-      if (id != outside) id = order[id];
-    parallel(cell_vertices.size(), [&](std::size_t ci) {
-      for (std::int32_t& k : cell_vertices[ci]) k = std::int32_t(vertex_id[std::size_t(k)]);
-    });
-
-    // Cells in Morton order of their centroids.
-    key.resize(domain.size());
-    parallel(domain.size(), [&](std::size_t i) {
-      double g[3] = {0, 0, 0};
-      for (int l = 0; l < 4; ++l)
-        for (int d = 0; d < 3; ++d) g[d] += 0.25 * vertices[std::size_t(cell_vertices[i][l])].xyz[d];
-      key[i] = {morton(g), std::uint32_t(i)};
-    });
-    tbb::parallel_sort(key.begin(), key.end());
-    order.assign(domain.size(), 0);
-    parallel(key.size(), [&](std::size_t i) { order[key[i].second] = std::uint32_t(i); });
-    slot_to_record_.resize(slot_to_domain.size());
-    parallel(slot_to_domain.size(), [&](std::size_t i) {
-      slot_to_record_[i] = slot_to_domain[i] == outside ? outside : order[slot_to_domain[i]];
-    });
-    records.resize(domain.size());
-    cell_handles.resize(domain.size());
-    parallel(domain.size(), [&](std::size_t i) {
-      const Cell_handle c = domain[i];
-      const std::uint32_t ci = order[i];
-      cell_handles[ci] = c;
-      Record& r = records[ci];
-      for (int l = 0; l < 4; ++l) {
-        r.v[l] = cell_vertices[i][l];
-        r.n[l] = index(c->neighbor(l));
-      }
-    });
-    // Mirror indices from the records of the neighbours (in Morton order,
-    // mostly in cache) rather than from the triangulation's cells: first
-    // find them all with the plain indices, then pack the links.
-    std::vector<std::uint8_t> mirror(4 * records.size(), 0);
-    parallel(records.size(), [&](std::size_t ci) {
-      for (int l = 0; l < 4; ++l) {
-        const std::uint32_t ni = records[ci].n[l];
-        if (ni == outside) continue;
-        const Record& o = records[ni];
-        std::uint8_t m = 0;
-        while (m < 3 && o.n[m] != ci) ++m;
-        mirror[4 * ci + std::size_t(l)] = m;
-      }
-    });
-    parallel(records.size(), [&](std::size_t ci) {
-      for (int l = 0; l < 4; ++l)
-        if (records[ci].n[l] != outside) records[ci].n[l] = (records[ci].n[l] << 2) | mirror[4 * ci + std::size_t(l)];
-    });
+    std::vector<std::array<std::int32_t, 4>> cell_vertices(domain.size()); // vertex ids of each domain cell
+    order_vertices(tr, domain, cell_vertices);
+    order_cells(domain, cell_vertices, slot_to_domain);
+    link_records();
   }
 
   /// Whether the arrays are usable (false if the domain is empty or has 2^30 cells or more).
@@ -353,6 +245,142 @@ public:
   std::array<double, 3> lo{}, hi{};     ///< bounding box of `vertices`
 
 private:
+
+  // Domain cells, and the slot tables of cells (cell_index_, and
+  // slot_to_domain: a cell's slot to its position in the result). The
+  // domain predicate is called concurrently, as during concurrent walks.
+  template <class Domain_predicate>
+  std::vector<Cell_handle> domain_cells(const Tr& tr, const Domain_predicate& in_domain,
+                                        std::vector<std::uint32_t>& slot_to_domain) {
+    std::vector<Cell_handle> all;
+    all.reserve(tr.tds().number_of_cells());
+    for (auto c = tr.tds().cells_begin(); c != tr.tds().cells_end(); ++c) {
+      cell_index_.push_back(c);
+      all.push_back(c);
+    }
+    cell_index_.finish();
+    std::vector<std::uint32_t> all_slot(all.size());
+    std::vector<std::uint8_t> keep(all.size());
+    parallel(all.size(), [&](std::size_t i) {
+      all_slot[i] = cell_index_(all[i]);
+      keep[i] = !tr.is_infinite(all[i]) && in_domain(all[i]);
+    });
+    std::vector<Cell_handle> domain;
+    domain.reserve(all.size());
+    slot_to_domain.assign(cell_index_.size(), outside);
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      if (!keep[i]) continue;
+      slot_to_domain[all_slot[i]] = std::uint32_t(domain.size());
+      domain.push_back(all[i]);
+    }
+    return domain;
+  }
+
+  // The vertices of the domain cells in Morton order (vertices, lo, hi), and
+  // each cell's vertex ids in that order.
+  void order_vertices(const Tr& tr, const std::vector<Cell_handle>& domain,
+                      std::vector<std::array<std::int32_t, 4>>& cell_vertices) {
+    Handle_index<Vertex_handle> vertex_slots;
+    for (auto v = tr.tds().vertices_begin(); v != tr.tds().vertices_end(); ++v) vertex_slots.push_back(v);
+    vertex_slots.finish();
+
+    // Vertices of domain cells, then their Morton order.
+    std::vector<std::uint32_t> vertex_id(vertex_slots.size(), outside);
+    std::vector<Vertex_record> used; // in the order first met
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::numeric_limits<double>::infinity();
+      hi[d] = -std::numeric_limits<double>::infinity();
+    }
+    parallel(domain.size(), [&](std::size_t ci) {
+      for (int i = 0; i < 4; ++i) cell_vertices[ci][i] = std::int32_t(vertex_slots(domain[ci]->vertex(i)));
+    });
+    for (std::size_t ci = 0; ci < domain.size(); ++ci)
+      for (int i = 0; i < 4; ++i) {
+        const Cell_handle c = domain[ci];
+        const std::uint32_t slot = std::uint32_t(cell_vertices[ci][i]);
+        std::uint32_t& id = vertex_id[slot];
+        if (id != outside) continue;
+        id = std::uint32_t(used.size());
+        Vertex_record r;
+        r.handle = c->vertex(i);
+        for (int d = 0; d < 3; ++d) {
+          r.xyz[d] = CGAL::to_double(r.handle->point()[d]);
+          lo[d] = std::min(lo[d], r.xyz[d]);
+          hi[d] = std::max(hi[d], r.xyz[d]);
+        }
+        used.push_back(r);
+      }
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> key(used.size());
+    parallel(used.size(), [&](std::size_t i) { key[i] = {morton(used[i].xyz), std::uint32_t(i)}; });
+    tbb::parallel_sort(key.begin(), key.end());
+    std::vector<std::uint32_t> order(used.size());
+    vertices.resize(used.size());
+    for (std::size_t i = 0; i < key.size(); ++i) {
+      order[key[i].second] = std::uint32_t(i);
+      vertices[i] = used[key[i].second];
+    }
+    for (std::uint32_t& id : vertex_id)
+      if (id != outside) id = order[id];
+    parallel(cell_vertices.size(), [&](std::size_t ci) {
+      for (std::int32_t& k : cell_vertices[ci]) k = std::int32_t(vertex_id[std::size_t(k)]);
+    });
+  }
+
+  // The records and cell handles, cells in Morton order of their centroids,
+  // and the table from a cell's slot to its record.
+  void order_cells(const std::vector<Cell_handle>& domain,
+                   const std::vector<std::array<std::int32_t, 4>>& cell_vertices,
+                   const std::vector<std::uint32_t>& slot_to_domain) {
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> key(domain.size());
+    parallel(domain.size(), [&](std::size_t i) {
+      double g[3] = {0, 0, 0};
+      for (int l = 0; l < 4; ++l)
+        for (int d = 0; d < 3; ++d) g[d] += 0.25 * vertices[std::size_t(cell_vertices[i][l])].xyz[d];
+      key[i] = {morton(g), std::uint32_t(i)};
+    });
+    tbb::parallel_sort(key.begin(), key.end());
+    std::vector<std::uint32_t> order(domain.size(), 0);
+    parallel(key.size(), [&](std::size_t i) { order[key[i].second] = std::uint32_t(i); });
+    slot_to_record_.resize(slot_to_domain.size());
+    parallel(slot_to_domain.size(), [&](std::size_t i) {
+      slot_to_record_[i] = slot_to_domain[i] == outside ? outside : order[slot_to_domain[i]];
+    });
+    records.resize(domain.size());
+    cell_handles.resize(domain.size());
+    parallel(domain.size(), [&](std::size_t i) {
+      const Cell_handle c = domain[i];
+      const std::uint32_t ci = order[i];
+      cell_handles[ci] = c;
+      Record& r = records[ci];
+      for (int l = 0; l < 4; ++l) {
+        r.v[l] = cell_vertices[i][l];
+        r.n[l] = index(c->neighbor(l));
+      }
+    });
+  }
+
+  // The neighbour links: the neighbour's record and, in the two low bits,
+  // this cell's index in it.
+  void link_records() {
+    // Mirror indices from the records of the neighbours (in Morton order,
+    // mostly in cache) rather than from the triangulation's cells: first
+    // find them all with the plain indices, then pack the links.
+    std::vector<std::uint8_t> mirror(4 * records.size(), 0);
+    parallel(records.size(), [&](std::size_t ci) {
+      for (int l = 0; l < 4; ++l) {
+        const std::uint32_t ni = records[ci].n[l];
+        if (ni == outside) continue;
+        const Record& o = records[ni];
+        std::uint8_t m = 0;
+        while (m < 3 && o.n[m] != ci) ++m;
+        mirror[4 * ci + std::size_t(l)] = m;
+      }
+    });
+    parallel(records.size(), [&](std::size_t ci) {
+      for (int l = 0; l < 4; ++l)
+        if (records[ci].n[l] != outside) records[ci].n[l] = (records[ci].n[l] << 2) | mirror[4 * ci + std::size_t(l)];
+    });
+  }
   // f(i) for i in [0, n), in parallel chunks.
   template <class F>
   static void parallel(std::size_t n, const F& f) {

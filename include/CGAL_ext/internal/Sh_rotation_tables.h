@@ -1,0 +1,150 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_EXT_INTERNAL_SH_ROTATION_TABLES_H
+#define CGAL_EXT_INTERNAL_SH_ROTATION_TABLES_H
+
+// The rotation D(R) of band-4 spherical harmonics (Octahedral_frame.h) as
+// products of exact sparse matrices: D(Rz) from cosines and sines of
+// multiples of the angle, Ry(b) = Rx(-90) Rz(b) Rx(90), and the z-y-z Euler
+// angles of a rotation without trigonometric calls.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <cstddef>
+#include <utility>
+
+namespace CGAL_ext {
+namespace internal {
+
+// One nonzero entry of a constant sparse 9x9 matrix.
+struct Oct_entry {
+  int row, col;
+  double value;
+};
+
+// X = D(Rx(+90 degrees)), exact entries sqrt(rational) (derived symbolically:
+// f(R^T x) = f(x, z, -y) re-expanded in the basis; checked in the tests).
+inline constexpr Oct_entry oct_x90[21] = {
+    {0, 5, 0.935414346693485346396},  {0, 7, -0.353553390593273762200}, // sqrt(14)/4, -sqrt(2)/4
+    {1, 1, -0.75},                    {1, 3, 0.661437827766147647625},  // -3/4, sqrt(7)/4
+    {2, 5, 0.353553390593273762200},  {2, 7, 0.935414346693485346396},  // sqrt(2)/4, sqrt(14)/4
+    {3, 1, 0.661437827766147647625},  {3, 3, 0.75},                     // sqrt(7)/4, 3/4
+    {4, 4, 0.375},                    {4, 6, 0.559016994374947424102},  // 3/8, sqrt(5)/4
+    {4, 8, 0.739509972887452005321},                                    // sqrt(35)/8
+    {5, 0, -0.935414346693485346396}, {5, 2, -0.353553390593273762200}, // -sqrt(14)/4, -sqrt(2)/4
+    {6, 4, 0.559016994374947424102},  {6, 6, 0.5},                      // sqrt(5)/4, 1/2
+    {6, 8, -0.661437827766147647625},                                   // -sqrt(7)/4
+    {7, 0, 0.353553390593273762200},  {7, 2, -0.935414346693485346396}, // sqrt(2)/4, -sqrt(14)/4
+    {8, 4, 0.739509972887452005321},  {8, 6, -0.661437827766147647625}, // sqrt(35)/8, -sqrt(7)/4
+    {8, 8, 0.125}};                                                     // 1/8
+
+// The generators L_k = d/dt D(exp(t [e_k]_x)) at t = 0 (skew-symmetric).
+inline constexpr Oct_entry oct_lx[14] = {
+    {0, 7, -1.41421356237309504880}, {1, 6, -1.87082869338697069279}, {1, 8, -1.41421356237309504880},
+    {2, 5, -2.12132034355964257320}, {2, 7, -1.87082869338697069279}, {3, 4, -3.16227766016837933200},
+    {3, 6, -2.12132034355964257320}, {4, 3, 3.16227766016837933200},  {5, 2, 2.12132034355964257320},
+    {6, 1, 1.87082869338697069279},  {6, 3, 2.12132034355964257320},  {7, 0, 1.41421356237309504880},
+    {7, 2, 1.87082869338697069279},  {8, 1, 1.41421356237309504880}};
+inline constexpr Oct_entry oct_ly[14] = {
+    {0, 1, 1.41421356237309504880},  {1, 0, -1.41421356237309504880}, {1, 2, 1.87082869338697069279},
+    {2, 1, -1.87082869338697069279}, {2, 3, 2.12132034355964257320},  {3, 2, -2.12132034355964257320},
+    {4, 5, -3.16227766016837933200}, {5, 4, 3.16227766016837933200},  {5, 6, -2.12132034355964257320},
+    {6, 5, 2.12132034355964257320},  {6, 7, -1.87082869338697069279}, {7, 6, 1.87082869338697069279},
+    {7, 8, -1.41421356237309504880}, {8, 7, 1.41421356237309504880}};
+inline constexpr Oct_entry oct_lz[8] = {{0, 8, 4}, {1, 7, 3}, {2, 6, 2}, {3, 5, 1},
+                                        {5, 3, -1}, {6, 2, -2}, {7, 1, -3}, {8, 0, -4}};
+
+// out = A in and out = A^T in (rows of a 9xN block), unrolled at compile
+// time over the nonzeros of the constant table A.
+template <const auto& A, class Mat, std::size_t... I>
+inline Mat oct_mul_impl(const Mat& in, std::index_sequence<I...>) {
+  Mat out = Mat::Zero();
+  ((out.row(A[I].row) += A[I].value * in.row(A[I].col)), ...);
+  return out;
+}
+template <const auto& A, class Mat, std::size_t... I>
+inline Mat oct_mul_transposed_impl(const Mat& in, std::index_sequence<I...>) {
+  Mat out = Mat::Zero();
+  ((out.row(A[I].col) += A[I].value * in.row(A[I].row)), ...);
+  return out;
+}
+template <const auto& A, class Mat>
+inline Mat oct_mul(const Mat& in) {
+  return oct_mul_impl<A>(in, std::make_index_sequence<std::extent_v<std::remove_reference_t<decltype(A)>>>());
+}
+template <const auto& A, class Mat>
+inline Mat oct_mul_transposed(const Mat& in) {
+  return oct_mul_transposed_impl<A>(in, std::make_index_sequence<std::extent_v<std::remove_reference_t<decltype(A)>>>());
+}
+
+// cos(m a), sin(m a) for m = 0..4 from cos a, sin a (angle addition, no trig calls).
+struct Oct_multiples {
+  double c[5], s[5];
+  Oct_multiples(double c1, double s1) {
+    c[0] = 1, s[0] = 0, c[1] = c1, s[1] = s1;
+    c[2] = c1 * c1 - s1 * s1, s[2] = 2 * s1 * c1;
+    c[3] = c[2] * c1 - s[2] * s1, s[3] = s[2] * c1 + c[2] * s1;
+    c[4] = c[2] * c[2] - s[2] * s[2], s[4] = 2 * s[2] * c[2];
+  }
+};
+
+// M <- D(Rz(a)) M: (D v)_m = cos(ma) v_m - sin(ma) v_-m, (D v)_-m = sin(ma) v_m + cos(ma) v_-m.
+template <class Mat>
+inline void oct_rotate_z(const Oct_multiples& a, Mat& M) {
+  for (int m = 1; m <= 4; ++m) {
+    const Eigen::Matrix<double, 1, Mat::ColsAtCompileTime> p = M.row(4 + m), n = M.row(4 - m);
+    M.row(4 + m) = a.c[m] * p - a.s[m] * n;
+    M.row(4 - m) = a.s[m] * p + a.c[m] * n;
+  }
+}
+
+// The z-y-z Euler angles R = Rz(alpha) Ry(beta) Rz(gamma) of a quaternion,
+// as cosines and sines, without trigonometric calls and well conditioned
+// everywhere (gimbal lock included): with q = (w, x, y, z),
+//   w = cos(b/2) cos((a+g)/2), z = cos(b/2) sin((a+g)/2),
+//   y = sin(b/2) cos((a-g)/2), x = -sin(b/2) sin((a-g)/2).
+// When cos(b/2) (or sin(b/2)) vanishes, (a+g)/2 (or (a-g)/2) is free and 0 is
+// taken; its influence on R is proportional to the vanishing factor.
+struct Oct_euler {
+  Oct_multiples alpha, beta, gamma;
+};
+inline Oct_euler oct_euler(double w, double x, double y, double z) {
+  const double r1 = std::sqrt(w * w + z * z), r2 = std::sqrt(x * x + y * y);
+  double cp = 1, sp = 0, cq = 1, sq = 0;
+  if (r1 > 0) cp = w / r1, sp = z / r1;
+  if (r2 > 0) cq = y / r2, sq = -x / r2;
+  const double n2 = r1 * r1 + r2 * r2;
+  return {Oct_multiples(cp * cq - sp * sq, sp * cq + cp * sq),
+          Oct_multiples((r1 - r2) * (r1 + r2) / n2, 2 * r1 * r2 / n2),
+          Oct_multiples(cp * cq + sp * sq, sp * cq - cp * sq)};
+}
+
+// M <- D(R) M, with D(R) = D(Rz(a)) X^T D(Rz(b)) X D(Rz(g)), since
+// Ry(b) = Rx(-90) Rz(b) Rx(90).
+// Mat: a fixed-size matrix type with 9 rows (row-major is faster for 9x9).
+// When beta is exactly 0 (a rotation about z, the identity included) only
+// D(Rz(a + g)) is applied, so that D(I) = I and D(Rz) are exact.
+template <class Mat>
+inline Mat oct_apply(const Oct_euler& e, Mat M) {
+  if (e.beta.s[1] == 0 && e.beta.c[1] == 1) {
+    oct_rotate_z(e.gamma, M);
+    oct_rotate_z(e.alpha, M);
+    return M;
+  }
+  oct_rotate_z(e.gamma, M);
+  M = oct_mul<oct_x90>(M);
+  oct_rotate_z(e.beta, M);
+  M = oct_mul_transposed<oct_x90>(M);
+  oct_rotate_z(e.alpha, M);
+  return M;
+}
+
+inline Oct_euler oct_euler(const Eigen::Quaterniond& q) { return oct_euler(q.w(), q.x(), q.y(), q.z()); }
+inline Oct_euler oct_euler(const Eigen::Matrix3d& R) { return oct_euler(Eigen::Quaterniond(R)); }
+
+} // namespace internal
+} // namespace CGAL_ext
+
+#endif // CGAL_EXT_INTERNAL_SH_ROTATION_TABLES_H
