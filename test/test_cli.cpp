@@ -27,6 +27,17 @@ TEST_CASE("help documents every subcommand", "[cli]") {
   CHECK(missing.exit_code == 2);
   CHECK(missing.err.find("missing argument MESH") != std::string::npos);
   CHECK(run("info a.mesh b.mesh").exit_code == 2);
+
+  // help SUBCOMMAND is SUBCOMMAND --help.
+  const Run h = run("help generate");
+  CHECK(h.exit_code == 0);
+  CHECK(h.out == run("generate --help").out);
+  CHECK(h.out.find("Usage: metric-frames generate") != std::string::npos);
+  CHECK(run("help").out == r.out);
+  const Run unknown = run("help frobnicate");
+  CHECK(unknown.exit_code == 2);
+  CHECK(unknown.err.find("expected one subcommand name") != std::string::npos);
+  CHECK(run("help info walk").exit_code == 2);
 }
 
 TEST_CASE("info prints counts, box, volume, angles and re-orientations", "[cli]") {
@@ -52,6 +63,29 @@ TEST_CASE("info prints counts, box, volume, angles and re-orientations", "[cli]"
   REQUIRE(e.exit_code == 0);
   CHECK(e.out.find("components           2\n") != std::string::npos);
   CHECK(e.out.find("non-manifold edges   1") != std::string::npos);
+}
+
+TEST_CASE("info --json prints the same figures as one JSON object", "[cli]") {
+  const Run j = run("info --json " + data_dir + "/cube_kuhn_2.mesh");
+  REQUIRE(j.exit_code == 0);
+  CHECK(j.out.front() == '{');
+  CHECK(j.out.find('\n') == j.out.size() - 1); // one line
+  CHECK(j.out.find("\"vertices\": 27, \"unused_vertices\": 0, \"tetrahedra\": 48, \"boundary_facets\": 48, "
+                   "\"components\": 1, \"non_manifold_boundary_edges\": 0, ") != std::string::npos);
+  CHECK(j.out.find("\"bounding_box\": {\"min\": [0, 0, 0], \"max\": [2, 2, 2]}, \"volume\": 8, ") != std::string::npos);
+  CHECK(j.out.find("\"dihedral_angles_deg\": {\"min\": 45, \"max\": 90}, \"reoriented_tets\": 0, "
+                   "\"reoriented_examples\": []}") != std::string::npos);
+  CHECK(j.err.find("[done]") != std::string::npos);
+
+  const Run o = run("info " + data_dir + "/reoriented.mesh --json");
+  REQUIRE(o.exit_code == 0);
+  CHECK(o.out.find("\"reoriented_tets\": 16, \"reoriented_examples\": [1, 4, 7") != std::string::npos);
+  // A mesh path with a quote and a backslash stays valid JSON.
+  const std::string odd = file_with("a\"b\\c.mesh", "");
+  std::filesystem::copy_file(data_dir + "/cube_kuhn_2.mesh", odd, std::filesystem::copy_options::overwrite_existing);
+  const Run q = run("info --json '" + odd + "'");
+  REQUIRE(q.exit_code == 0);
+  CHECK(q.out.find("a\\\"b\\\\c.mesh\"") != std::string::npos);
 }
 
 TEST_CASE("bad input: one error line naming the file and the line, exit code 1, no crash", "[cli][bad-input]") {

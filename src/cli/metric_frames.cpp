@@ -32,7 +32,8 @@ const Subcommand subcommands[] = {
 void print_help(std::ostream& os) {
   os << "metric-frames: metric-driven 3D frame fields on tetrahedral meshes (CGAL Metric Frames)\n\n"
         "Usage: metric-frames SUBCOMMAND [ARGS...]\n"
-        "       metric-frames SUBCOMMAND --help\n\n"
+        "       metric-frames SUBCOMMAND --help\n"
+        "       metric-frames help [SUBCOMMAND]\n\n"
         "Subcommands:\n";
   for (const auto& s : subcommands) os << "  " << s.name << std::string(11 - std::strlen(s.name), ' ') << s.summary << "\n";
   os << "\nOptions:\n  -h, --help    this help\n  --version     the version\n\n"
@@ -48,9 +49,16 @@ int main(int argc, char** argv) {
     print_help(std::cerr);
     return 2;
   }
-  if (args[0] == "-h" || args[0] == "--help" || args[0] == "help") {
+  if (args[0] == "-h" || args[0] == "--help" || (args[0] == "help" && args.size() == 1)) {
     print_help(std::cout);
     return 0;
+  }
+  if (args[0] == "help") { // help SUBCOMMAND: that subcommand's --help
+    if (args.size() == 2)
+      for (const auto& s : subcommands)
+        if (args[1] == s.name) return s.run({"--help"});
+    std::cerr << "metric-frames help: expected one subcommand name (see metric-frames --help)\n";
+    return 2;
   }
   if (args[0] == "--version") {
     std::cout << "metric-frames " << CGAL_EXT_VERSION << "\n";
