@@ -20,7 +20,6 @@
 #include <Eigen/Core>
 
 #include <cstddef>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -77,11 +76,7 @@ struct Metric_field_storage_3 {
     for (Vertex_handle v : tr.finite_vertex_handles()) {
       const Eigen::Matrix3d gv = g(v->point());
       const std::string why = check_metric_tensor(gv);
-      if (!why.empty()) {
-        std::ostringstream s;
-        s << why << " at (" << v->point() << ")";
-        throw Input_error("", 0, metric_vertex_name(get(vim, v)), s.str());
-      }
+      if (!why.empty()) throw metric_vertex_error(get(vim, v), v->point(), why);
       roots[get(vim, v)] = sqrt_spd(gv);
       has[get(vim, v)] = 1;
     }

@@ -47,6 +47,13 @@ Eigen::Vector3d to_eigen_vector(const Point_3& p) {
 }
 // How messages about a metric field name the vertex of 0-based index i.
 inline std::string metric_vertex_name(std::size_t i) { return "vertex " + std::to_string(i + 1); }
+// The error for an invalid metric value `why` at the vertex of index i at point p.
+template <class Point_3>
+Input_error metric_vertex_error(std::size_t i, const Point_3& p, const std::string& why) {
+  std::ostringstream s;
+  s << why << " at (" << p << ")";
+  return Input_error("", 0, metric_vertex_name(i), s.str());
+}
 } // namespace internal
 
 /// \ingroup PkgCGALExtMetric
@@ -359,9 +366,7 @@ private:
     std::string why = check_metric_tensor(value);
     if (why.empty()) return;
     if (kind_ == Vertex_metric_kind::sqrt_metric) why = "its square root A: " + why;
-    std::ostringstream s;
-    s << why << " at (" << v->point() << ")";
-    throw Input_error("", 0, internal::metric_vertex_name(get(vim_, v)), s.str());
+    throw internal::metric_vertex_error(get(vim_, v), v->point(), why);
   }
 
   static std::string volume_text(double v) {
