@@ -46,6 +46,7 @@
 #include <CGAL_ext/build_triangulation_from_tets.h>
 #include <CGAL_ext/tetrahedralize.h>
 
+#include <nlohmann/json.hpp>
 #include <tbb/info.h>
 #include <unistd.h>
 
@@ -131,10 +132,10 @@ std::string slurp(const std::filesystem::path& p) {
   return ss.str();
 }
 
-// The number after "key": in a JSON text, searched from `from` (NaN if absent).
-double json_number(const std::string& text, const std::string& key, std::size_t from = 0) {
-  const std::size_t k = text.find("\"" + key + "\": ", from);
-  return k == std::string::npos ? std::nan("") : std::atof(text.c_str() + k + key.size() + 4);
+// The number at `key` of a JSON object (NaN if absent or null).
+double json_number(const nlohmann::json& object, const char* key) {
+  const auto it = object.find(key);
+  return it != object.end() && it->is_number() ? it->get<double>() : std::nan("");
 }
 
 std::string shell_quote(const std::string& s) {
@@ -179,13 +180,16 @@ void hex_pipeline(const Hex_tools& tools, const CGAL_ext::IO::Medit_mesh& mesh, 
                          path("quality.log");
   if (q.hex_error.empty() && std::system(qs.c_str()) != 0) q.hex_error = "no hex mesh";
   if (q.hex_error.empty()) {
-    const std::string j = slurp(dir / "quality.json");
-    q.hexes = std::size_t(json_number(j, "hexahedra"));
-    const std::size_t sj = j.find("\"scaled_jacobian\": {");
-    q.sj_min = json_number(j, "min", sj);
-    q.sj_median = json_number(j, "median", sj);
-    q.hexes_inverted = std::size_t(json_number(j, "count_le_0", sj));
-    q.coverage = json_number(j, "coverage");
+    const nlohmann::json j = nlohmann::json::parse(slurp(dir / "quality.json"), nullptr, /*allow_exceptions=*/false);
+    const nlohmann::json& sj = j.is_object() ? j.value("scaled_jacobian", nlohmann::json::object()) : j;
+    if (!j.is_object() || !sj.is_object()) q.hex_error = "unreadable quality.json";
+    else {
+      q.hexes = std::size_t(json_number(j, "hexahedra"));
+      q.sj_min = json_number(sj, "min");
+      q.sj_median = json_number(sj, "median");
+      q.hexes_inverted = std::size_t(json_number(sj, "count_le_0"));
+      q.coverage = json_number(j, "coverage");
+    }
   }
   if (q.hex_error.empty()) fs::remove_all(dir);
   else q.hex_error += " (files in " + dir.string() + ")";

@@ -4,11 +4,13 @@
 # (or sudo) on Debian bookworm.
 set -euo pipefail
 
-# clang and libclang-rt-14-dev: the sanitized build and the libFuzzer
+# libmuparser-dev, libcli11-dev and nlohmann-json3-dev: the metric-frames
+# tool (formulas, argument parsing, JSON output); the library alone needs
+# CGAL, Eigen, Boost and TBB. clang and libclang-rt-14-dev: the sanitized build and the libFuzzer
 # harnesses (scripts/test_sanitize.sh, doc/robustness.md). doxygen: the API
 # documentation, checked without warnings by CI (scripts/check_docs.sh).
-packages=(build-essential cmake libcgal-dev libeigen3-dev libboost-dev catch2 libtbb-dev libgmp-dev libmpfr-dev libmuparser-dev python3
-          clang libclang-rt-14-dev doxygen)
+packages=(build-essential cmake libcgal-dev libeigen3-dev libboost-dev catch2 libtbb-dev libgmp-dev libmpfr-dev
+          libmuparser-dev libcli11-dev nlohmann-json3-dev python3 clang libclang-rt-14-dev doxygen)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -10,6 +10,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -17,6 +19,7 @@
 #include <sstream>
 #include <string>
 #include <system_error>
+#include <vector>
 
 namespace CGAL_ext {
 namespace testing {
@@ -101,6 +104,15 @@ inline std::string file_with(const std::string& name, const std::string& content
 
 /// The number of lines (newlines) of a text.
 inline std::size_t lines(const std::string& s) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')); }
+
+/// The JSON values of a text of JSON lines (one value per line); a line
+/// that is not JSON throws nlohmann::json::parse_error, which fails the test.
+inline std::vector<nlohmann::json> json_lines(const std::string& text) {
+  std::vector<nlohmann::json> values;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) values.push_back(nlohmann::json::parse(line));
+  return values;
+}
 
 } // namespace testing
 } // namespace CGAL_ext

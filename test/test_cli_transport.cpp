@@ -24,13 +24,6 @@ namespace {
 // [0,2]^3 without the cube x, y > 1 (Kuhn tets of unit cubes); 24 vertices.
 const std::string l_shape = data_dir + "/l_shape.mesh";
 
-std::vector<std::string> split_lines(const std::string& s) {
-  std::vector<std::string> out;
-  std::istringstream in(s);
-  for (std::string l; std::getline(in, l);) out.push_back(l);
-  return out;
-}
-
 // A .sol file of the L-shape from formulas, made by `metric-frames metric`.
 std::string metric_file(const std::string& name, const std::string& expr) {
   const std::string path = (work / name).string();
@@ -39,10 +32,10 @@ std::string metric_file(const std::string& name, const std::string& expr) {
   return path;
 }
 
-double number_after(const std::string& line, const std::string& key) {
-  const auto k = line.find("\"" + key + "\": ");
-  REQUIRE(k != std::string::npos);
-  return std::strtod(line.c_str() + k + key.size() + 4, nullptr);
+// Whether a transport line holds exactly the identity, reached without error.
+bool is_identity(const nlohmann::json& line) {
+  return line["R"] == nlohmann::json::parse("[1, 0, 0, 0, 1, 0, 0, 0, 1]") && line["angle"] == 0 &&
+         line["evaluations"].is_number_unsigned() && !line.contains("converged");
 }
 
 const std::string pairs_content = "# ax ay az bx by bz\n"
@@ -71,15 +64,17 @@ TEST_CASE("transport: a constant metric gives exactly the identity, and outside 
   const std::string pairs = file_with("pairs.txt", pairs_content);
   const Run c = run("transport " + l_shape + " --metric " + constant + " --pairs " + pairs);
   REQUIRE(c.exit_code == 0);
-  const auto out = split_lines(c.out);
+  const auto out = json_lines(c.out);
   REQUIRE(out.size() == 5);
-  const std::string identity = "\"R\": [1, 0, 0, 0, 1, 0, 0, 0, 1], \"angle\": 0, \"evaluations\": ";
-  CHECK(out[0].find("{\"pair\": 0, " + identity) == 0);
-  CHECK(out[1] == "{\"pair\": 1, \"error\": \"the segment leaves the domain at t = 0.384615 and re-enters it at t "
-                  "= 0.615385\"}");
-  CHECK(out[2] == "{\"pair\": 2, \"error\": \"the start point is outside the domain\"}");
-  CHECK(out[3] == "{\"pair\": 3, " + identity + "0}");
-  CHECK(out[4].find("{\"pair\": 4, " + identity) == 0);
+  for (std::size_t i = 0; i < 5; ++i) CHECK(out[i]["pair"] == i);
+  CHECK(is_identity(out[0]));
+  CHECK(out[1] == nlohmann::json::parse(R"({"pair": 1, "error": "the segment leaves the domain at t = 0.384615 and )"
+                                        R"(re-enters it at t = 0.615385"})"));
+  CHECK(out[2] == nlohmann::json::parse(R"({"pair": 2, "error": "the start point is outside the domain"})"));
+  CHECK(is_identity(out[3]));
+  CHECK(out[3]["evaluations"] == 0); // a = b
+  CHECK(is_identity(out[4]));
+  CHECK(c.out.find("{\"pair\":0,\"R\":[1.0,0.0,0.0,") == 0); // keys in the documented order
   CHECK(c.err.find("[summary] 5 pairs: 3 transported") != std::string::npos);
   CHECK(c.err.find("2 outside the domain") != std::string::npos);
   CHECK(c.err.find("[stage] transport") != std::string::npos);
@@ -95,20 +90,23 @@ TEST_CASE("transport: a varying metric gives a rotation, the same for any thread
   REQUIRE(m1.exit_code == 0);
   REQUIRE(tr.exit_code == 0);
   CHECK(m1.out == m2.out);
-  const auto magnus = split_lines(m1.out), trapezoid = split_lines(tr.out);
+  const auto magnus = json_lines(m1.out), trapezoid = json_lines(tr.out);
   REQUIRE(magnus.size() == 5);
   REQUIRE(trapezoid.size() == 5);
   for (int i : {0, 4}) {
-    INFO(magnus[i]);
-    CHECK(magnus[i].find("{\"pair\": " + std::to_string(i) + ", \"R\": [0.99") == 0);
+    INFO(magnus[i].dump());
+    CHECK(magnus[i]["pair"] == i);
+    CHECK(magnus[i]["R"][0].get<double>() > 0.99);
+    CHECK(magnus[i]["R"][0].get<double>() < 1);
     // Both schemes are within their tolerance of the same transport.
-    const double a = number_after(magnus[i], "angle"), b = number_after(trapezoid[i], "angle");
+    const double a = magnus[i]["angle"], b = trapezoid[i]["angle"];
     CHECK(a > 0.01);
     CHECK(std::abs(a - b) <= 1e-8 + 1e-6);
     CHECK(a != b); // but computed by different schemes
-    CHECK(number_after(magnus[i], "evaluations") > 0);
+    CHECK(magnus[i]["evaluations"] > 0);
   }
-  CHECK(magnus[3] == "{\"pair\": 3, \"R\": [1, 0, 0, 0, 1, 0, 0, 0, 1], \"angle\": 0, \"evaluations\": 0}");
+  CHECK(is_identity(magnus[3]));
+  CHECK(magnus[3]["evaluations"] == 0);
 }
 
 TEST_CASE("transport: bad input is one error naming the file with exit 1, bad usage exits with 2", "[cli][transport][bad-input]") {
@@ -125,17 +123,17 @@ TEST_CASE("transport: bad input is one error naming the file with exit 1, bad us
   };
   const Case cases[] = {
       {"--metric " + varying + " --pairs " + pairs + " --scheme euler", 2,
-       "metric-frames transport: --scheme 'euler': expected magnus or trapezoid"},
-      {"--metric " + varying + " --pairs " + pairs + " --tol 0", 2, "--tol '0': expected a positive finite number"},
-      {"--metric " + varying + " --pairs " + pairs + " --tol -1e-8", 2, "--tol '-1e-8': expected a positive"},
-      {"--metric " + varying + " --pairs " + pairs + " --tol nan", 2, "--tol 'nan': expected a positive finite number"},
-      {"--metric " + varying + " --pairs " + pairs + " --tol inf", 2, "--tol 'inf': expected a positive finite number"},
-      {"--metric " + varying + " --pairs " + pairs + " --tol 1e-8x", 2, "--tol '1e-8x': expected a positive"},
-      {"--metric " + varying + " --pairs " + pairs + " --threads 1.5", 2, "--threads '1.5': expected a whole number"},
-      {"--metric " + varying + " --pairs " + pairs + " --threads 0", 2, "--threads '0': expected"},
-      {"--pairs " + pairs, 2, "missing option --metric"},
-      {"--metric " + varying, 2, "missing option --pairs"},
-      {"--metric " + varying + " --pairs " + pairs + " extra.mesh", 2, "unexpected argument 'extra.mesh'"},
+       "metric-frames transport: --scheme: euler not in {magnus,trapezoid}"},
+      {"--metric " + varying + " --pairs " + pairs + " --tol 0", 2, "--tol: '0' is not a positive finite number"},
+      {"--metric " + varying + " --pairs " + pairs + " --tol -1e-8", 2, "--tol: '-1e-8' is not a positive"},
+      {"--metric " + varying + " --pairs " + pairs + " --tol nan", 2, "--tol: 'nan' is not a positive finite number"},
+      {"--metric " + varying + " --pairs " + pairs + " --tol inf", 2, "--tol: 'inf' is not a positive finite number"},
+      {"--metric " + varying + " --pairs " + pairs + " --tol 1e-8x", 2, "--tol: '1e-8x' is not a positive"},
+      {"--metric " + varying + " --pairs " + pairs + " --threads 1.5", 2, "--threads: Value 1.5 not in range 1 to 1024"},
+      {"--metric " + varying + " --pairs " + pairs + " --threads 0", 2, "--threads: Value 0 not in range 1 to 1024"},
+      {"--pairs " + pairs, 2, "--metric is required"},
+      {"--metric " + varying, 2, "--pairs is required"},
+      {"--metric " + varying + " --pairs " + pairs + " extra.mesh", 2, "The following argument was not expected: extra.mesh"},
       {"--metric " + varying + " --pairs " + bad_pairs, 1,
        "metric-frames transport: error: " + bad_pairs + ":3: expected 6 numbers (ax ay az bx by bz), found 5"},
       {"--metric " + varying + " --pairs " + (work / "none.txt").string(), 1,
@@ -155,7 +153,9 @@ TEST_CASE("transport: bad input is one error naming the file with exit 1, bad us
   CHECK(run("transport --metric " + varying + " --pairs " + pairs).exit_code == 2); // no MESH
   const Run help = run("transport --help");
   CHECK(help.exit_code == 0);
-  CHECK(help.out.find("Usage: metric-frames transport MESH --metric SOL --pairs FILE") == 0);
+  CHECK(help.out.find("Usage: metric-frames transport [OPTIONS] MESH\n") == 0);
+  for (const char* option : {"--metric SOL", "--pairs FILE", "--tol T", "--scheme S", "--threads N"})
+    CHECK(help.out.find(option) != std::string::npos);
 }
 
 TEST_CASE("transport: a metric that jumps by 1e30 between vertices ends quickly, and its lines say not converged",
@@ -173,10 +173,11 @@ TEST_CASE("transport: a metric that jumps by 1e30 between vertices ends quickly,
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   CHECK(seconds < 60);
-  const auto out = split_lines(r.out);
+  const auto out = json_lines(r.out);
   REQUIRE(out.size() == 2);
-  CHECK(out[0].find("\"converged\": false, \"error_estimate\": ") != std::string::npos);
-  CHECK(out[1] == "{\"pair\": 1, \"error\": \"the start point is outside the domain\"}");
+  CHECK(out[0]["converged"] == false);
+  CHECK(out[0]["error_estimate"].get<double>() > 1e-8);
+  CHECK(out[1] == nlohmann::json::parse(R"({"pair": 1, "error": "the start point is outside the domain"})"));
   CHECK(r.err.find("not converged (the metric changes too fast along them") != std::string::npos);
 }
 

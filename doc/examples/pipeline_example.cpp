@@ -12,8 +12,10 @@
 // 1. load_tet_mesh() reads the .mesh (or meshes a surface with Mesh_3).
 // 2. make_pipeline_metric() divides the metric by h^2 and checks it.
 // 3. generate_pipeline_frame_field() computes, repairs and classifies.
-// 4. write_pipeline_outputs() and write_pipeline_report() write the files.
+// 4. write_pipeline_outputs() writes the files; pipeline_report() makes the
+//    report, a JSON value (nlohmann-json), and write_pipeline_report() writes it.
 #include <CGAL_ext/Frame_field_pipeline.h>
+#include <CGAL_ext/Frame_field_pipeline_report.h>
 
 #include <Eigen/Core>
 
@@ -55,8 +57,8 @@ int main(int argc, char** argv) {
       CGAL_ext::generate_pipeline_frame_field(field, options, CGAL_ext::Singularity_repair_options(), stage);
 
   CGAL_ext::write_pipeline_outputs(out_dir, mesh, frames);
-  const std::string report =
-      CGAL_ext::write_pipeline_report(out_dir, CGAL_ext::pipeline_report_json(mesh, field, frames, context));
+  const nlohmann::ordered_json report_json = CGAL_ext::pipeline_report(mesh, field, frames, context);
+  const std::string report = CGAL_ext::write_pipeline_report(out_dir, report_json.dump(2) + "\n");
   //! [pipeline]
   std::printf("%s  wrote %s and the files of CubeCover and ParaView\n",
               CGAL_ext::pipeline_summary_text(mesh, field, frames, context).c_str(), report.c_str());

@@ -230,21 +230,9 @@ struct Pipeline_report_context {
 };
 
 /// \ingroup PkgCGALExtPipeline
-/// The report of `report.json` (format in `output_files.md`): counts, hex
-/// size, expected hexes, singular curves and nodes, non-meshable edges,
-/// energies, face angles, alignment, repair and timings.
-/// \param mesh the tet mesh (its vertex count is reported)
-/// \param metric the metric field and its scaling
-/// \param frames the frame field and its singularities
-/// \param context the input, the options and the stages' times
-/// \returns the JSON text, ending with a newline
-std::string pipeline_report_json(const Pipeline_tet_mesh& mesh, const Pipeline_metric& metric,
-                                 const Pipeline_frame_field& frames, const Pipeline_report_context& context);
-
-/// \ingroup PkgCGALExtPipeline
 /// Writes `json` as `report.json` into `directory`, atomically.
 /// \param directory the output directory
-/// \param json the report, from `pipeline_report_json()`
+/// \param json the report's text, from `pipeline_report()` (Frame_field_pipeline_report.h)
 /// \returns the file's path
 /// \throws std::runtime_error if the file cannot be written
 std::string write_pipeline_report(const std::string& directory, const std::string& json);

@@ -20,6 +20,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <string>
 #include <vector>
 
 namespace CGAL_ext {
@@ -404,6 +405,17 @@ inline const char* singular_node_kind_name(Singular_node::Kind k) {
   return k == Singular_node::Kind::boundary_end ? "boundary end"
          : k == Singular_node::Kind::interior_end ? "interior end"
                                                    : "junction";
+}
+
+/// \ingroup PkgCGALExtFrames
+/// The singular edges counted by type, every singular type listed (with 0 if
+/// absent), keyed by `singularity_type_name()`.
+/// \param edges the singular edges
+/// \returns the counts of "+1/4", "-1/4", "1/4 across", "1/2" and "1/3"
+inline std::map<std::string, std::size_t> count_singular_edges_by_type(const std::vector<Singular_edge>& edges) {
+  std::map<std::string, std::size_t> by_type = {{"+1/4", 0}, {"-1/4", 0}, {"1/4 across", 0}, {"1/2", 0}, {"1/3", 0}};
+  for (const Singular_edge& s : edges) ++by_type[singularity_type_name(s.type)];
+  return by_type;
 }
 
 /// \ingroup PkgCGALExtFrames

@@ -2,70 +2,42 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #include "cli_common.h"
 #include "commands.h"
+#include "json_output.h"
 
 #include <CGAL_ext/IO/read_tet_mesh.h>
 #include <CGAL_ext/Tet_mesh_statistics_3.h>
 
-#include <cmath>
 #include <cstdio>
-#include <iostream>
 
 namespace CGAL_ext::cli {
 
 namespace {
-const char* info_help =
-    "Usage: metric-frames info MESH [--json]\n\n"
-    "Reads a tetrahedral Medit .mesh file and prints its counts (vertices,\n"
-    "tetrahedra, boundary facets, connected components), bounding box, total\n"
-    "volume, smallest and largest dihedral angle, and how many tetrahedra were\n"
-    "given with negative orientation (they are re-oriented in memory; the file\n"
-    "is not changed).\n\n"
-    "Options:\n"
-    "  --json       print one JSON object instead (the same figures; coordinates\n"
-    "               with 17 significant digits, tetrahedra numbered from 1)\n"
-    "  -h, --help   this help\n";
 
 // The figures of info as one JSON object, on one line.
 void print_info_json(const std::string& mesh_path, const IO::Medit_mesh& mesh, const Tet_mesh_build_report& r,
                      const Tet_mesh_statistics_3& s) {
-  const auto exact = [](double x) { return std::isfinite(x) ? format_number(x, 17) : std::string("null"); };
-  std::string examples;
-  for (std::size_t t : r.reoriented_examples) examples += (examples.empty() ? "" : ", ") + std::to_string(t + 1);
-  std::printf("{\"mesh\": \"%s\", \"vertices\": %zu, \"unused_vertices\": %zu, \"tetrahedra\": %zu, "
-              "\"boundary_facets\": %zu, \"components\": %zu, \"non_manifold_boundary_edges\": %zu, "
-              "\"bounding_box\": {\"min\": [%s, %s, %s], \"max\": [%s, %s, %s]}, \"volume\": %s, \"edges\": %zu, "
-              "\"mean_edge_length\": %s, \"dihedral_angles_deg\": {\"min\": %s, \"max\": %s}, "
-              "\"reoriented_tets\": %zu, \"reoriented_examples\": [%s]}\n",
-              json_escape(mesh_path).c_str(), mesh.vertices.size(), r.unused_vertices, s.cells, s.boundary_facets,
-              s.components, r.non_manifold_boundary_edges, exact(s.bbox.xmin()).c_str(), exact(s.bbox.ymin()).c_str(),
-              exact(s.bbox.zmin()).c_str(), exact(s.bbox.xmax()).c_str(), exact(s.bbox.ymax()).c_str(),
-              exact(s.bbox.zmax()).c_str(), internal::json_number(double(s.volume)).c_str(), s.edges,
-              internal::json_number(double(s.mean_edge_length)).c_str(),
-              internal::json_number(s.min_dihedral_angle).c_str(), internal::json_number(s.max_dihedral_angle).c_str(),
-              r.reoriented_tets, examples.c_str());
+  Json examples = Json::array();
+  for (std::size_t t : r.reoriented_examples) examples.push_back(t + 1);
+  print_json_line({{"mesh", mesh_path},
+                   {"vertices", mesh.vertices.size()},
+                   {"unused_vertices", r.unused_vertices},
+                   {"tetrahedra", s.cells},
+                   {"boundary_facets", s.boundary_facets},
+                   {"components", s.components},
+                   {"non_manifold_boundary_edges", r.non_manifold_boundary_edges},
+                   {"bounding_box",
+                    {{"min", {s.bbox.xmin(), s.bbox.ymin(), s.bbox.zmin()}},
+                     {"max", {s.bbox.xmax(), s.bbox.ymax(), s.bbox.zmax()}}}},
+                   {"volume", double(s.volume)},
+                   {"edges", s.edges},
+                   {"mean_edge_length", double(s.mean_edge_length)},
+                   {"dihedral_angles_deg", {{"min", s.min_dihedral_angle}, {"max", s.max_dihedral_angle}}},
+                   {"reoriented_tets", r.reoriented_tets},
+                   {"reoriented_examples", examples}});
 }
-}
 
-int command_info(const std::vector<std::string>& args) {
-  Arguments a(args, "info", info_help);
-  if (a.help_requested()) return 0;
-  const bool json = a.flag("--json");
-  const std::string mesh_path = a.positional("MESH");
-  a.finish();
-
-  Stage_timer timer;
-  Tet_mesh_triangulation_3<> tr;
-  IO::Medit_mesh mesh;
-  const Tet_mesh_build_report r = IO::read_tet_mesh(mesh_path, tr, &mesh);
-  timer.stage("read and build");
-  const Tet_mesh_statistics_3 s = compute_tet_mesh_statistics(tr, Is_tet_mesh_domain_cell());
-  timer.stage("statistics");
-  if (json) {
-    print_info_json(mesh_path, mesh, r, s);
-    timer.summary();
-    return 0;
-  }
-
+void print_info_text(const std::string& mesh_path, const IO::Medit_mesh& mesh, const Tet_mesh_build_report& r,
+                     const Tet_mesh_statistics_3& s) {
   std::printf("mesh                 %s\n", mesh_path.c_str());
   std::printf("vertices             %zu", mesh.vertices.size());
   if (r.unused_vertices) std::printf(" (%zu not used by any tetrahedron)", r.unused_vertices);
@@ -87,6 +59,20 @@ int command_info(const std::vector<std::string>& args) {
     std::printf(")");
   }
   std::printf("\n");
+}
+
+} // namespace
+
+int run_info(const Info_request& request) {
+  Stage_timer timer;
+  Tet_mesh_triangulation_3<> tr;
+  IO::Medit_mesh mesh;
+  const Tet_mesh_build_report r = IO::read_tet_mesh(request.mesh, tr, &mesh);
+  timer.stage("read and build");
+  const Tet_mesh_statistics_3 s = compute_tet_mesh_statistics(tr, Is_tet_mesh_domain_cell());
+  timer.stage("statistics");
+  if (request.json) print_info_json(request.mesh, mesh, r, s);
+  else print_info_text(request.mesh, mesh, r, s);
   timer.summary();
   return 0;
 }

@@ -1,29 +1,72 @@
-// The subcommands of the metric-frames tool. Each takes the arguments after
-// its name, prints its output on stdout and its progress and errors on
-// stderr, and returns the process exit code (0 success, 1 bad input or
-// failure, 2 bad usage).
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// The subcommands of the metric-frames tool: what each one's command line
+// holds once parsed (metric_frames.cpp declares the options with CLI11, in
+// that one unit, since CLI11 is header-only and costs seconds per unit), and
+// the function that runs it. A run function prints its output on stdout and
+// its progress on stderr and returns the exit code; it throws Usage_error for
+// a command line that CLI11 cannot reject by itself (exit 2) and anything
+// else for bad input or a failure (exit 1).
 #ifndef CGAL_EXT_CLI_COMMANDS_H
 #define CGAL_EXT_CLI_COMMANDS_H
 
+#include <CGAL_ext/Cell_transport_3.h>
+#include <CGAL_ext/Frame_field_options.h>
+
+#include <cstddef>
+#include <optional>
 #include <string>
-#include <vector>
 
 namespace CGAL_ext::cli {
 
-/// `metric-frames info MESH`: counts, bounding box, volume, dihedral angles.
-int command_info(const std::vector<std::string>& args);
+/// `metric-frames info MESH [--json]`.
+struct Info_request {
+  std::string mesh;
+  bool json = false;
+};
+/// Prints the counts, bounding box, volume and dihedral angles of the mesh.
+int run_info(const Info_request& request);
 
-/// `metric-frames walk MESH --segments FILE`: the simplices met by segments, as JSON lines.
-int command_walk(const std::vector<std::string>& args);
+/// `metric-frames walk MESH --segments FILE [--fast]`.
+struct Walk_request {
+  std::string mesh, segments;
+  bool fast = false;
+};
+/// Prints the simplices met by the segments, as JSON lines.
+int run_walk(const Walk_request& request);
 
-/// `metric-frames transport MESH --metric SOL --pairs FILE`: transports between point pairs, as JSON lines.
-int command_transport(const std::vector<std::string>& args);
+/// `metric-frames transport MESH --metric SOL --pairs FILE [--tol T] [--scheme S] [--threads N]`.
+struct Transport_request {
+  std::string mesh, metric, pairs;
+  double tolerance = Transport_options().tolerance;
+  std::string scheme = "magnus"; ///< magnus or trapezoid
+  std::size_t threads = 0;       ///< 0: all cores
+};
+/// Prints the transports between the point pairs, as JSON lines.
+int run_transport(const Transport_request& request);
 
-/// `metric-frames metric MESH (--expr EXPRS | --size EXPR) -o OUT.sol`: a .sol file from formulas.
-int command_metric(const std::vector<std::string>& args);
+/// `metric-frames metric MESH (--expr EXPRS | --size EXPR) -o OUT.sol [--force]`.
+struct Metric_request {
+  std::string mesh, out;
+  std::optional<std::string> expr, size;
+  bool force = false;
+};
+/// Writes the .sol file of the formulas.
+int run_metric(const Metric_request& request);
 
-/// `metric-frames generate INPUT [--metric SOL | ...] -o OUTDIR`: the frame field, its singularities and output files.
-int command_generate(const std::vector<std::string>& args);
+/// `metric-frames generate INPUT [--metric SOL | --metric-const M | --metric-expr E] -o OUTDIR [options]`.
+struct Generate_request {
+  std::string input, out_dir;
+  bool force = false, no_repair = false, smooth_surface = false, soft_boundary = false;
+  std::optional<std::string> sol_path, metric_const, metric_expr;
+  std::optional<double> hex_size, size, max_memory;
+  std::size_t threads = 0; ///< 0: all cores
+  /// The frame field's options that the command line sets.
+  Frame_field_options options;
+};
+/// Writes the frame field, its singularities and the output files.
+int run_generate(const Generate_request& request);
 
 } // namespace CGAL_ext::cli
 

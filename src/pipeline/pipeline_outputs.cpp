@@ -2,7 +2,8 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
 // The output steps of the generate pipeline (Frame_field_pipeline.h): the
-// files for CubeCover, HexEx and ParaView, report.json and the summary.
+// files for CubeCover, HexEx and ParaView, report.json's file and the summary
+// (the report's JSON value is header-only: Frame_field_pipeline_report.h).
 #include <CGAL_ext/Frame_field_pipeline.h>
 
 #include "../IO/write_file_atomically.h"
@@ -12,14 +13,12 @@
 #include <CGAL_ext/IO/Perm_file.h>
 #include <CGAL_ext/IO/Vtu_file.h>
 #include <CGAL_ext/Input_error.h>
-#include <CGAL_ext/internal/json_text.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
-#include <sstream>
 #include <stdexcept>
 
 namespace CGAL_ext {
@@ -28,13 +27,6 @@ namespace {
 
 using Frames = Pipeline_frame_field_3;
 using Matchings = Pipeline_matchings_3;
-
-using internal::json_escape;
-std::string number(double x) { return internal::json_number(x); }
-
-std::string point_json(const Eigen::Vector3d& p) {
-  return "[" + number(p(0)) + ", " + number(p(1)) + ", " + number(p(2)) + "]";
-}
 
 // The VTK cell type code of a singular edge in singularities.vtu.
 int type_code(Singularity_type t) {
@@ -130,67 +122,6 @@ void write_singularities_vtu(const std::string& path, const IO::Medit_mesh& mesh
                          {vertex_id, node});
 }
 
-// The singular edges counted by type, every type listed.
-std::map<std::string, std::size_t> count_by_type(const std::vector<Singular_edge>& sing) {
-  std::map<std::string, std::size_t> by_type = {{"+1/4", 0}, {"-1/4", 0}, {"1/4 across", 0}, {"1/2", 0}, {"1/3", 0}};
-  for (const Singular_edge& s : sing) ++by_type[singularity_type_name(s.type)];
-  return by_type;
-}
-
-// The "singularities" object of report.json. Vertex numbers are 1-based, as in mesh.mesh.
-std::string singularities_json(const Pipeline_frame_field& f) {
-  const std::vector<Singular_edge>& sing = f.singular_edges;
-  const Singularity_graph& graph = f.graph;
-  std::ostringstream js;
-  js << "{\n    \"edges\": " << sing.size() << ",\n    \"edges_by_type\": {";
-  bool first = true;
-  for (const auto& [name, n] : count_by_type(sing)) js << (first ? "" : ", ") << "\"" << name << "\": " << n, first = false;
-  js << "},\n    \"non_meshable_edges\": " << f.non_meshable_edges << ",\n    \"curves\": " << graph.curves.size()
-     << ",\n    \"closed_curves\": " << graph.closed_curves << ",\n    \"nodes\": " << graph.nodes.size()
-     << ",\n    \"junctions\": " << graph.junctions << ",\n    \"boundary_ends\": " << graph.boundary_ends
-     << ",\n    \"interior_ends\": " << graph.interior_ends << ",\n    \"non_meshable_edge_list\": [";
-  first = true;
-  for (const Singular_edge& s : sing) {
-    if (is_meshable(s.type)) continue;
-    js << (first ? "\n" : ",\n") << "      {\"vertices\": [" << s.vertices[0] + 1 << ", " << s.vertices[1] + 1
-       << "], \"midpoint\": " << point_json(s.midpoint) << ", \"type\": \"" << singularity_type_name(s.type)
-       << "\", \"turn_deg\": " << number(s.turn_deg) << ", \"axis_angle_deg\": " << number(s.axis_angle_deg)
-       << ", \"edge_axis_angle_deg\": " << number(s.edge_axis_angle_deg) << "}";
-    first = false;
-  }
-  js << (first ? "" : "\n    ") << "],\n    \"curve_list\": [";
-  first = true;
-  for (const Singular_curve& c : graph.curves) {
-    js << (first ? "\n" : ",\n") << "      {\"edges\": " << c.edges.size() << ", \"length\": " << number(c.length)
-       << ", \"closed\": " << (c.closed ? "true" : "false") << ", \"ends\": [" << c.vertices.front() + 1 << ", "
-       << c.vertices.back() + 1 << "], \"+1/4\": " << c.plus_quarter_edges << ", \"-1/4\": " << c.minus_quarter_edges
-       << ", \"non_meshable\": " << c.non_meshable_edges << "}";
-    first = false;
-  }
-  js << (first ? "" : "\n    ") << "],\n    \"node_list\": [";
-  first = true;
-  for (const Singular_node& n : graph.nodes) {
-    js << (first ? "\n" : ",\n") << "      {\"vertex\": " << n.vertex + 1 << ", \"position\": " << point_json(n.position)
-       << ", \"degree\": " << n.degree << ", \"kind\": \"" << singular_node_kind_name(n.kind) << "\"}";
-    first = false;
-  }
-  js << (first ? "" : "\n    ") << "]\n  }";
-  return js.str();
-}
-
-// The "repair" object of report.json, or null if the repair was not run.
-std::string repair_json(const std::optional<Singularity_repair_report>& fix) {
-  if (!fix) return "null";
-  return "{\"non_meshable_before\": " + std::to_string(fix->non_meshable_before) +
-         ", \"non_meshable_after\": " + std::to_string(fix->non_meshable_after) +
-         ", \"rounds\": " + std::to_string(fix->rounds) + ", \"batches\": " + std::to_string(fix->batches) +
-         ", \"regions_tried\": " + std::to_string(fix->regions_tried) +
-         ", \"regions_kept\": " + std::to_string(fix->regions_accepted) +
-         ", \"tets_changed\": " + std::to_string(fix->tets_changed) +
-         ", \"energy_before\": " + number(fix->energy_before) + ", \"energy_after\": " + number(fix->energy_after) +
-         "}";
-}
-
 } // namespace
 
 const std::vector<std::string>& pipeline_output_names() {
@@ -222,50 +153,6 @@ void write_pipeline_outputs(const std::string& directory, const Pipeline_tet_mes
   write_singularities_vtu((dir / "singularities.vtu").string(), mesh.mesh, frames.singular_edges, frames.graph);
 }
 
-std::string pipeline_report_json(const Pipeline_tet_mesh& mesh, const Pipeline_metric& metric,
-                                 const Pipeline_frame_field& frames, const Pipeline_report_context& context) {
-  const Frame_field_statistics& st = frames.frames->statistics();
-  const Face_angle_statistics& angles = frames.face_angles;
-  std::ostringstream js;
-  js << "{\n"
-     << "  \"input\": \"" << json_escape(context.input) << "\",\n"
-     << "  \"metric\": \"" << json_escape(metric.name) << "\",\n"
-     << "  \"hex_size\": " << (metric.scaled ? number(metric.hex_size) : "null") << ",\n"
-     << "  \"hex_size_rule\": \"" << json_escape(metric.hex_size_rule) << "\",\n"
-     << "  \"expected_hexes\": " << number(metric.expected_hexes) << ",\n"
-     << "  \"tets\": " << frames.frames->size() << ",\n"
-     << "  \"vertices\": " << mesh.mesh.vertices.size() << ",\n"
-     << "  \"interior_faces\": " << st.interior_faces << ",\n"
-     << "  \"boundary_faces\": " << st.boundary_faces << ",\n"
-     << "  \"singular_edges\": " << frames.singular_edges.size() << ",\n"
-     << "  \"singularities\": " << singularities_json(frames) << ",\n"
-     << "  \"smoothness_energy\": " << number(st.smoothness_energy) << ",\n"
-     << "  \"smoothness_energy_per_weight\": " << number(st.smoothness_energy / st.total_face_weight) << ",\n"
-     << "  \"projected_energy\": " << number(st.projected_energy) << ",\n"
-     << "  \"face_angle_deg\": {\"mean\": " << number(angles.mean_deg) << ", \"median\": " << number(angles.median_deg)
-     << ", \"max\": " << number(angles.max_deg) << "},\n"
-     << "  \"boundary_alignment_error_deg\": {\"mean\": " << number(st.boundary_error_mean_deg)
-     << ", \"max\": " << number(st.boundary_error_max_deg) << "},\n"
-     << "  \"g_orthonormality_max_error\": " << number(st.max_orthonormality_error) << ",\n"
-     << "  \"hard_boundary_tets\": {\"one_axis\": " << st.hard_one_axis << ", \"two_axes\": " << st.hard_two_axes << "},\n"
-     << "  \"sharp_features\": {\"angle_deg\": " << number(context.options.feature_angle_deg)
-     << ", \"edges\": " << st.feature_edges << ", \"curve_vertices\": " << st.feature_curve_vertices
-     << ", \"corners\": " << st.feature_corners << ", \"tets\": " << st.feature_tets << "},\n"
-     << "  \"repair\": " << repair_json(frames.repair) << ",\n"
-     << "  \"max_transport_angle_deg\": " << number(st.max_transport_angle * 180 / M_PI) << ",\n"
-     << "  \"linear_iterations\": " << st.linear_iterations << ",\n"
-     << "  \"linear_residual\": " << number(st.linear_residual) << ",\n"
-     << "  \"refinement_iterations\": " << st.refinement_iterations << ",\n"
-     << "  \"stage_seconds\": {";
-  bool first = true;
-  for (const auto& [name, s] : context.stage_seconds) {
-    js << (first ? "" : ", ") << "\"" << json_escape(name) << "\": " << number(s);
-    first = false;
-  }
-  js << "}\n}\n";
-  return js.str();
-}
-
 std::string write_pipeline_report(const std::string& directory, const std::string& json) {
   const std::string path = (std::filesystem::path(directory) / "report.json").string();
   IO::internal::write_file_atomically(path, [&](std::FILE* f) {
@@ -280,9 +167,9 @@ std::string pipeline_summary_text(const Pipeline_tet_mesh& mesh, const Pipeline_
   const Face_angle_statistics& angles = frames.face_angles;
   const Singularity_graph& graph = frames.graph;
   std::string types;
-  for (const auto& [name, n] : count_by_type(frames.singular_edges))
+  for (const auto& [name, n] : count_singular_edges_by_type(frames.singular_edges))
     if (n) types += (types.empty() ? "" : ", ") + name + ": " + std::to_string(n);
-  const std::string hex = metric.scaled ? number(metric.hex_size) + " (" + metric.hex_size_rule + ")"
+  const std::string hex = metric.scaled ? format_number(metric.hex_size, 10) + " (" + metric.hex_size_rule + ")"
                                         : std::string("the metric's unit length");
   char buf[4096];
   std::snprintf(buf, sizeof buf,

@@ -1,0 +1,141 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_EXT_FRAME_FIELD_PIPELINE_REPORT_H
+#define CGAL_EXT_FRAME_FIELD_PIPELINE_REPORT_H
+
+// The report of the pipeline (report.json) as a JSON value. Header-only and
+// the one part of the package that needs nlohmann-json (Debian
+// nlohmann-json3-dev, CMake target nlohmann_json::nlohmann_json): the
+// compiled library itself needs only CGAL, Eigen, Boost and TBB.
+
+#include <CGAL_ext/Frame_field_pipeline.h>
+#include <CGAL_ext/Frame_field_singularities_3.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <string>
+
+namespace CGAL_ext {
+
+namespace internal {
+
+inline nlohmann::ordered_json point_json(const Eigen::Vector3d& p) { return {p(0), p(1), p(2)}; }
+
+// The "singularities" object: counts, the non-meshable edges, the curves and
+// the nodes. Vertex numbers are 1-based, as in mesh.mesh.
+inline nlohmann::ordered_json pipeline_singularities_json(const Pipeline_frame_field& f) {
+  const Singularity_graph& graph = f.graph;
+  nlohmann::ordered_json by_type = nlohmann::ordered_json::object();
+  for (const auto& [name, n] : count_singular_edges_by_type(f.singular_edges)) by_type[name] = n;
+  nlohmann::ordered_json edges = nlohmann::ordered_json::array(), curves = nlohmann::ordered_json::array(),
+                         nodes = nlohmann::ordered_json::array();
+  for (const Singular_edge& s : f.singular_edges)
+    if (!is_meshable(s.type))
+      edges.push_back({{"vertices", {s.vertices[0] + 1, s.vertices[1] + 1}},
+                       {"midpoint", point_json(s.midpoint)},
+                       {"type", singularity_type_name(s.type)},
+                       {"turn_deg", s.turn_deg},
+                       {"axis_angle_deg", s.axis_angle_deg},
+                       {"edge_axis_angle_deg", s.edge_axis_angle_deg}});
+  for (const Singular_curve& c : graph.curves)
+    curves.push_back({{"edges", c.edges.size()},
+                      {"length", c.length},
+                      {"closed", c.closed},
+                      {"ends", {c.vertices.front() + 1, c.vertices.back() + 1}},
+                      {"+1/4", c.plus_quarter_edges},
+                      {"-1/4", c.minus_quarter_edges},
+                      {"non_meshable", c.non_meshable_edges}});
+  for (const Singular_node& n : graph.nodes)
+    nodes.push_back({{"vertex", n.vertex + 1},
+                     {"position", point_json(n.position)},
+                     {"degree", n.degree},
+                     {"kind", singular_node_kind_name(n.kind)}});
+  return {{"edges", f.singular_edges.size()},
+          {"edges_by_type", by_type},
+          {"non_meshable_edges", f.non_meshable_edges},
+          {"curves", graph.curves.size()},
+          {"closed_curves", graph.closed_curves},
+          {"nodes", graph.nodes.size()},
+          {"junctions", graph.junctions},
+          {"boundary_ends", graph.boundary_ends},
+          {"interior_ends", graph.interior_ends},
+          {"non_meshable_edge_list", edges},
+          {"curve_list", curves},
+          {"node_list", nodes}};
+}
+
+// The "repair" object, or null if the repair was not run.
+inline nlohmann::ordered_json pipeline_repair_json(const std::optional<Singularity_repair_report>& fix) {
+  if (!fix) return nullptr;
+  return {{"non_meshable_before", fix->non_meshable_before},
+          {"non_meshable_after", fix->non_meshable_after},
+          {"rounds", fix->rounds},
+          {"batches", fix->batches},
+          {"regions_tried", fix->regions_tried},
+          {"regions_kept", fix->regions_accepted},
+          {"tets_changed", fix->tets_changed},
+          {"energy_before", fix->energy_before},
+          {"energy_after", fix->energy_after}};
+}
+
+} // namespace internal
+
+/// \ingroup PkgCGALExtPipeline
+/// The report of `report.json` (format in `output_files.md`) as a JSON value
+/// whose keys keep their documented order: counts, hex size, expected hexes,
+/// singular curves and nodes, non-meshable edges, energies, face angles,
+/// alignment, repair and timings. Numbers are written by nlohmann-json, in
+/// the shortest form that reads back as the same double; a number that is
+/// not finite is `null`. Header-only: it needs nlohmann-json.
+///
+/// Write it with `write_pipeline_report(directory, pipeline_report(...).dump(2) + "\n")`,
+/// as `metric-frames generate` does.
+/// \param mesh the tet mesh (its vertex count is reported)
+/// \param metric the metric field and its scaling
+/// \param frames the frame field and its singularities
+/// \param context the input, the options and the stages' times
+/// \returns the report, a JSON object
+inline nlohmann::ordered_json pipeline_report(const Pipeline_tet_mesh& mesh, const Pipeline_metric& metric,
+                                              const Pipeline_frame_field& frames,
+                                              const Pipeline_report_context& context) {
+  const Frame_field_statistics& st = frames.frames->statistics();
+  const Face_angle_statistics& angles = frames.face_angles;
+  nlohmann::ordered_json stage_seconds = nlohmann::ordered_json::object();
+  for (const auto& [name, s] : context.stage_seconds) stage_seconds[name] = s;
+  return {
+      {"input", context.input},
+      {"metric", metric.name},
+      {"hex_size", metric.scaled ? nlohmann::ordered_json(metric.hex_size) : nlohmann::ordered_json(nullptr)},
+      {"hex_size_rule", metric.hex_size_rule},
+      {"expected_hexes", metric.expected_hexes},
+      {"tets", frames.frames->size()},
+      {"vertices", mesh.mesh.vertices.size()},
+      {"interior_faces", st.interior_faces},
+      {"boundary_faces", st.boundary_faces},
+      {"singular_edges", frames.singular_edges.size()},
+      {"singularities", internal::pipeline_singularities_json(frames)},
+      {"smoothness_energy", st.smoothness_energy},
+      {"smoothness_energy_per_weight", st.smoothness_energy / st.total_face_weight},
+      {"projected_energy", st.projected_energy},
+      {"face_angle_deg", {{"mean", angles.mean_deg}, {"median", angles.median_deg}, {"max", angles.max_deg}}},
+      {"boundary_alignment_error_deg", {{"mean", st.boundary_error_mean_deg}, {"max", st.boundary_error_max_deg}}},
+      {"g_orthonormality_max_error", st.max_orthonormality_error},
+      {"hard_boundary_tets", {{"one_axis", st.hard_one_axis}, {"two_axes", st.hard_two_axes}}},
+      {"sharp_features",
+       {{"angle_deg", context.options.feature_angle_deg},
+        {"edges", st.feature_edges},
+        {"curve_vertices", st.feature_curve_vertices},
+        {"corners", st.feature_corners},
+        {"tets", st.feature_tets}}},
+      {"repair", internal::pipeline_repair_json(frames.repair)},
+      {"max_transport_angle_deg", st.max_transport_angle * 180 / M_PI},
+      {"linear_iterations", st.linear_iterations},
+      {"linear_residual", st.linear_residual},
+      {"refinement_iterations", st.refinement_iterations},
+      {"stage_seconds", stage_seconds}};
+}
+
+} // namespace CGAL_ext
+
+#endif
