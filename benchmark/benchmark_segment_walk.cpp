@@ -1,5 +1,6 @@
-// Benchmark of the exact segment walk against CGAL's segment traverser, on
-// the Delaunay triangulation of N uniform random points in the unit cube.
+// Benchmark of the exact segment walk against CGAL's segment traverser, and
+// of its point location against CGAL's locate(), on the Delaunay
+// triangulation of N uniform random points in the unit cube.
 //
 // usage: benchmark_segment_walk [N = 100000] [segments per class = 2000] [seed = 1]
 //
@@ -22,6 +23,13 @@
 // The walker's construction (its cell array) is timed separately. Both
 // forms of our walk hand each piece to the same counting code (through an
 // output iterator for the single calls, as a callback for the batches).
+//
+// Point location: Point_locator_3 and Delaunay_triangulation_3::locate() on
+// the same random points, without a hint and with the cell of the previous
+// point as hint (random, so mostly far: our locator then starts from its
+// grid), cold and warm, in points per second and as a ratio; the located
+// cells are compared outside the timings.
+#include <CGAL_ext/Point_locator_3.h>
 #include <CGAL_ext/Segment_walk_3.h>
 
 #include <CGAL/Delaunay_triangulation_3.h>
@@ -221,6 +229,62 @@ std::size_t mismatches_with_cgal(const DT& dt, const Walk& walk, const std::vect
   return mismatches;
 }
 
+// Point_locator_3 against CGAL's locate() on `count` random points.
+void measure_location(const DT& dt, std::size_t count, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Point> pts;
+  for (std::size_t i = 0; i < count; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
+  const CGAL_ext::Point_locator_3<DT> locate(dt);
+  std::vector<DT::Cell_handle> ours(count), cgal(count);
+  std::vector<char> in_hull(count);
+  // Each run returns the number of points located in a cell (all, for random points).
+  auto run_ours = [&](bool hint) {
+    std::size_t in_cell = 0;
+    DT::Cell_handle h;
+    for (std::size_t i = 0; i < count; ++i) {
+      const auto l = locate(pts[i], hint ? h : DT::Cell_handle());
+      ours[i] = h = l.cell;
+      in_cell += l.dimension == 3;
+    }
+    return in_cell;
+  };
+  auto run_cgal = [&](bool hint) {
+    std::size_t in_cell = 0;
+    DT::Cell_handle h;
+    DT::Locate_type lt;
+    int li, lj;
+    for (std::size_t i = 0; i < count; ++i) {
+      cgal[i] = h = dt.locate(pts[i], lt, li, lj, hint ? h : DT::Cell_handle());
+      in_cell += lt == DT::CELL;
+      in_hull[i] = lt != DT::OUTSIDE_CONVEX_HULL;
+    }
+    return in_cell;
+  };
+  const std::array<std::function<std::size_t()>, 4> f = {[&] { return run_ours(false); }, [&] { return run_cgal(false); },
+                                                         [&] { return run_ours(true); }, [&] { return run_cgal(true); }};
+  std::printf("\npoint location, %zu random points, best of 5 interleaved rounds (thread CPU time), single thread\n", count);
+  std::printf("%-6s | %12s %12s %12s %12s | %9s %9s\n", "", "Mpoints/s", "", "", "", "ratio to", "CGAL");
+  std::printf("%-6s | %12s %12s %12s %12s | %9s %9s\n", "caches", "ours", "CGAL", "ours, hint", "CGAL, hint", "no hint",
+              "hint");
+  for (bool cold : {true, false}) {
+    std::array<double, 4> best;
+    std::array<std::size_t, 4> located;
+    interleaved(5, cold, f, best, located);
+    std::printf("%-6s | %12.3f %12.3f %12.3f %12.3f | %9.2f %9.2f\n", cold ? "cold" : "warm", count / best[0] / 1e6,
+                count / best[1] / 1e6, count / best[2] / 1e6, count / best[3] / 1e6, best[1] / best[0], best[3] / best[2]);
+  }
+  run_ours(false);
+  run_cgal(false);
+  // Outside the convex hull CGAL gives an infinite cell, we give none (outside the domain).
+  std::size_t differ = 0, outside = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    outside += !in_hull[i];
+    differ += in_hull[i] ? ours[i] != cgal[i] : ours[i] != DT::Cell_handle();
+  }
+  std::printf("check  | %zu of %zu points located differently from CGAL (%zu outside the convex hull)\n", differ, count,
+              outside);
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -260,5 +324,6 @@ int main(int argc, char** argv) {
     std::printf("%-20s %-6s %zu of %zu segments with a cell sequence (single call or batch) different from CGAL's\n", cl.name.c_str(), "check",
                 mismatches_with_cgal(dt, walk, segs), segs.size());
   }
+  measure_location(dt, 10 * per_class, rng);
   return 0;
 }

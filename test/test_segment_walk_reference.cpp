@@ -5,6 +5,7 @@
 #include "reference/degenerate_test_meshes.h"
 #include "walk_test_meshes.h"
 
+#include <CGAL_ext/Point_locator_3.h>
 #include <CGAL_ext/Segment_walk_3.h>
 #include <CGAL_ext/Tet_mesh_triangulation_3.h>
 #include <CGAL_ext/build_triangulation_from_tets.h>
@@ -15,7 +16,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 #include <cstdio>
 #include <iterator>
 #include <sstream>
@@ -289,6 +292,44 @@ void report(const std::string& family, const Family_result& r) {
 
 Test_mesh single_tet() {
   return {"single_tet", {{0, 0, 0}, {6, 0, 0}, {0, 6, 0}, {0, 0, 6}}, {{0, 1, 2, 3}}};
+}
+
+// The location of x by brute force, independent of Point_locator_3: every
+// domain cell whose bounding box holds x (a comparison of doubles, exact) is
+// tested with orientations in exact rational arithmetic. All the cells that
+// contain x must agree on the simplex; dimension -1 if none contains it.
+Reference_piece exact_location(const Tr& tr, const P3& x) {
+  const EK::Point_3 ex{Q{x[0]}, Q{x[1]}, Q{x[2]}};
+  Reference_piece r{-1, {}, Q(0), Q(0)};
+  bool found = false;
+  for (auto c : tr.finite_cell_handles()) {
+    if (!c->info().in_domain()) continue;
+    bool in_box = true;
+    for (int d = 0; d < 3 && in_box; ++d) {
+      double lo = c->vertex(0)->point()[d], hi = lo;
+      for (int i = 1; i < 4; ++i) lo = std::min(lo, c->vertex(i)->point()[d]), hi = std::max(hi, c->vertex(i)->point()[d]);
+      in_box = lo <= x[d] && x[d] <= hi;
+    }
+    if (!in_box) continue;
+    std::array<EK::Point_3, 4> v;
+    for (int i = 0; i < 4; ++i) v[i] = ek_point(c->vertex(i)->point());
+    std::vector<std::size_t> ids;
+    bool inside = true;
+    for (int i = 0; i < 4 && inside; ++i) {
+      std::array<EK::Point_3, 4> w = v;
+      w[i] = ex;
+      const CGAL::Orientation o = CGAL::orientation(w[0], w[1], w[2], w[3]);
+      inside = o != CGAL::NEGATIVE;
+      if (o == CGAL::POSITIVE) ids.push_back(c->vertex(i)->info());
+    }
+    if (!inside) continue;
+    std::sort(ids.begin(), ids.end());
+    if (found) REQUIRE(ids == r.vertices); // the simplex does not depend on the cell
+    r.dimension = int(ids.size()) - 1;
+    r.vertices = ids;
+    found = true;
+  }
+  return r;
 }
 
 } // namespace
@@ -579,4 +620,72 @@ TEST_CASE("walk vs reference: through the vertex where two cubes touch", "[walk]
     INFO("walk:\n" << to_string(got, Vertex_info_id()) << "reference:\n" << to_string(exp));
     CHECK(mismatch(got, exp, 1e-9, Is_tet_mesh_domain_cell(), Vertex_info_id()) == "");
   }
+}
+
+TEST_CASE("point locator vs reference: every special point, from hints on the far side of holes", "[locate][reference]") {
+  // Point_locator_3 against an exact brute force (exact_location, checked
+  // against the walk reference on a sample): the vertices, edge midpoints, facet and cell
+  // centroids, and points around and outside each mesh, from no hint, from
+  // hints across the holes (where the visibility walk meets the boundary and
+  // the exact bucket test decides) and from every 37th cell. The Delaunay
+  // triangulation of points on a sphere has only long cells: its bucket grid
+  // is coarsened to keep the cell references bounded.
+  std::size_t located = 0;
+  for (const Test_mesh& m : {tunnel_grid(3), cavity_grid(3), l_shape_grid(3), edge_touching_blocks(2),
+                             vertex_touching_blocks(), checkerboard_blocks(), delaunay_cospherical({25})}) {
+    INFO(m.name);
+    Tr tr;
+    build(m, tr);
+    const Point_locator_3<Tr, Is_tet_mesh_domain_cell> locate(tr, Is_tet_mesh_domain_cell());
+    const Segment_walk_3<Tr, Is_tet_mesh_domain_cell> walk(tr, Is_tet_mesh_domain_cell());
+    std::vector<P3> points(m.points.begin(), m.points.end());
+    for (const auto& t : m.tets)
+      for (int a = 0; a < 4; ++a) {
+        const P3 &u = m.points[t[a]], &v = m.points[t[(a + 1) % 4]], &w = m.points[t[(a + 2) % 4]];
+        points.push_back({(u[0] + v[0]) / 2, (u[1] + v[1]) / 2, (u[2] + v[2]) / 2});
+        points.push_back({(u[0] + v[0] + w[0]) / 3, (u[1] + v[1] + w[1]) / 3, (u[2] + v[2] + w[2]) / 3});
+        if (a == 0) {
+          const P3& z = m.points[t[3]];
+          points.push_back({(u[0] + v[0] + w[0] + z[0]) / 4, (u[1] + v[1] + w[1] + z[1]) / 4, (u[2] + v[2] + w[2] + z[2]) / 4});
+        }
+      }
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<double> u(-0.2, 1.2);
+    P3 lo = m.points[0], hi = m.points[0];
+    for (const P3& p : m.points)
+      for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], p[d]), hi[d] = std::max(hi[d], p[d]);
+    for (int i = 0; i < 300; ++i) {
+      P3 p;
+      for (int d = 0; d < 3; ++d) p[d] = lo[d] + u(rng) * (hi[d] - lo[d]);
+      points.push_back(p);
+    }
+    std::vector<Tr::Cell_handle> hints = {Tr::Cell_handle(), tr.infinite_cell()};
+    std::size_t k = 0;
+    for (auto c : tr.finite_cell_handles())
+      if (k++ % 37 == 0) hints.push_back(c);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const P3& x = points[i];
+      const Reference_piece ref = exact_location(tr, x);
+      if (i % 50 == 0) { // a zero-length segment of the walk reference is exactly the location
+        const Reference_piece walk_ref = ref_of(tr, x, x).front();
+        CHECK(walk_ref.dimension == ref.dimension);
+        CHECK(walk_ref.vertices == ref.vertices);
+      }
+      const Tr::Point px(x[0], x[1], x[2]);
+      for (std::size_t h = i % 5; h < hints.size(); h += 5) {
+        INFO("point " << fmt(x) << " hint " << h << ", reference:\n" << to_string(std::vector<Reference_piece>{ref}));
+        const auto l = locate(px, hints[h]);
+        std::vector<std::size_t> ids;
+        for (int j = 0; j <= l.dimension; ++j) ids.push_back(l.vertices[j]->info());
+        std::sort(ids.begin(), ids.end());
+        REQUIRE(l.dimension == ref.dimension);
+        CHECK(ids == ref.vertices);
+        CHECK((l.cell != Tr::Cell_handle()) == (ref.dimension >= 0));
+        if (l.cell != Tr::Cell_handle()) CHECK(l.cell->info().in_domain());
+        CHECK(walk.locate(px, hints[h]).dimension == ref.dimension);
+        ++located;
+      }
+    }
+  }
+  CHECK(located >= 7 * 300); // at least one hint per random point of each mesh
 }

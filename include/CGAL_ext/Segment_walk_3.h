@@ -8,6 +8,8 @@
 /// whose relative interior meets the segment, in order, with the parameter
 /// interval of each piece, and the gaps outside the domain.
 
+#include <CGAL_ext/Point_locator_3.h>
+#include <CGAL_ext/Segment_walk_piece_3.h>
 #include <CGAL_ext/Tet_mesh_triangulation_3.h>
 #include <CGAL_ext/internal/Walk_cell_array_3.h>
 #include <CGAL_ext/internal/Walk_crossing_parameter.h>
@@ -39,28 +41,6 @@
 #include <vector>
 
 namespace CGAL_ext {
-
-/// \ingroup PkgCGALExtWalk
-/// One piece of the output of `Segment_walk_3`: a simplex of the domain (or a
-/// gap outside it) and the parameter interval where the segment
-/// \f$x(t) = q + t (p - q)\f$ lies in its relative interior.
-///
-/// \tparam Triangulation a CGAL `Triangulation_3`
-template <class Triangulation>
-struct Segment_walk_piece_3 {
-  /// -1 for a gap outside the domain, 0 vertex, 1 edge, 2 facet, 3 cell.
-  int dimension = -1;
-  /// The first `dimension + 1` entries are the vertices of the simplex (in no
-  /// particular order); the others are default-constructed.
-  std::array<typename Triangulation::Vertex_handle, 4> vertices{};
-  /// A domain cell incident to the simplex (the cell itself for dimension 3);
-  /// default-constructed for a gap.
-  typename Triangulation::Cell_handle cell{};
-  /// Start of the parameter interval.
-  double t_in = 0;
-  /// End of the parameter interval (`t_in == t_out` for a transversal crossing).
-  double t_out = 0;
-};
 
 /// \ingroup PkgCGALExtWalk
 /// One segment \f$[q, p]\f$ of a batch walk (`Segment_walk_3::fast_batch()`
@@ -131,10 +111,10 @@ struct Segment_walk_query_3 {
 /// `Tet_mesh_triangulation_3` of a non-convex domain, with several
 /// components, even touching along an edge or at a vertex. The re-entry
 /// after a gap is found with an AABB tree over the boundary facets, built
-/// lazily (once, thread-safely) on the first gap. Point location uses the
-/// hint, or a coarse grid of cells built lazily, then a visibility walk, and
-/// falls back on an exact segment walk from a vertex if the visibility walk
-/// meets the boundary.
+/// lazily (once, thread-safely) on the first gap. The start of a segment is
+/// found by `Point_locator_3` (a visibility walk from the hint or a coarse
+/// grid, and an exact test of the cells of the point's bucket where the
+/// visibility walk meets the boundary), which does not use the walk.
 ///
 /// The walker does not modify the triangulation: several threads may walk
 /// with the same walker concurrently. The triangulation must not change
@@ -173,13 +153,11 @@ public:
   /// \param in_domain the domain predicate
   /// \throws std::invalid_argument if `tr.dimension() < 3`
   Segment_walk_3(const Tr& tr, Domain_predicate in_domain)
-      : tr_(&tr), in_domain_(std::move(in_domain)), shared_(std::make_shared<Shared>()),
+      : tr_(&checked_dimension(tr)), in_domain_(std::move(in_domain)), locator_(tr, in_domain_),
+        shared_(std::make_shared<Shared>()),
         orient_(tr.geom_traits().orientation_3_object()),
         coplanar_orient_(tr.geom_traits().coplanar_orientation_3_object()),
         strictly_ordered_(tr.geom_traits().collinear_are_strictly_ordered_along_line_3_object()) {
-    if (tr.dimension() < 3)
-      throw std::invalid_argument("Segment_walk_3: the triangulation has dimension " + std::to_string(tr.dimension()) +
-                                  "; the walk needs a 3-dimensional triangulation (at least 4 non-coplanar points)");
     // Every simplex is reported at most once and every star is searched at
     // most once per simplex: this bound is never reached on a valid input.
     max_steps_ = 64 * (tr.number_of_cells() + 4) + 1024;
@@ -351,7 +329,7 @@ private:
 
   // Data built lazily, shared by the copies of a walker.
   struct Shared {
-    std::once_flag boundary_once, grid_once;
+    std::once_flag boundary_once;
     // boundary facets of the domain: the domain cell and the facet index
     std::vector<Triangle> triangles;
     std::vector<std::pair<Cell_handle, int>> triangle_facets;
@@ -359,11 +337,6 @@ private:
     // for boundary vertices whose star of cells is not connected through the
     // TDS (domains touching at a vertex): one domain cell per component
     std::unordered_map<const void*, std::vector<Cell_handle>> vertex_seeds;
-    // coarse grid of domain cells, for the start of point location
-    std::array<double, 3> lo{}, step{};
-    std::array<int, 3> n{};
-    std::vector<Cell_handle> grid;
-    Cell_handle any_domain_cell;
   };
 
   // Per-call state (internal/Segment_walk_3_state.h).
@@ -378,11 +351,9 @@ private:
     bool crossed = false; // s is facet (s.c, k) crossed transversally out of s.c
   };
 
-  // The output: a sink for output iterators, and one that keeps the last
-  // simplex (internal/Segment_walk_3_state.h).
+  // The output: a sink for output iterators (internal/Segment_walk_3_state.h).
   template <bool Full, class OutputIterator>
   struct Sink;
-  struct Last_sink;
 
 
   Piece make_piece(const Simplex& s, double a, double b) const;
@@ -558,15 +529,22 @@ private:
 
   void ensure_boundary() const;
 
-  void ensure_grid() const;
-  int grid_coord(double v, int d) const;
-  std::size_t grid_index(const double* g) const;
-  Cell_handle grid_start(const Point& x) const;
+  // The simplex of the domain containing x, from Point_locator_3 (invalid if outside).
+  Simplex locate_simplex(const Point& x, Cell_handle hint) const {
+    const auto face = locator_.locate_face(x, hint);
+    return Simplex{face.first, face.second};
+  }
 
-  Simplex locate_simplex(const Point& x, Cell_handle hint) const;
+  static const Tr& checked_dimension(const Tr& tr) {
+    if (tr.dimension() < 3)
+      throw std::invalid_argument("Segment_walk_3: the triangulation has dimension " + std::to_string(tr.dimension()) +
+                                  "; the walk needs a 3-dimensional triangulation (at least 4 non-coplanar points)");
+    return tr;
+  }
 
   const Tr* tr_;
   Domain_predicate in_domain_;
+  Point_locator_3<Tr, Domain_predicate> locator_;
   std::shared_ptr<Shared> shared_;
   std::shared_ptr<const Cell_array> cells_; // null if the walk cannot use it
   typename Kernel::Orientation_3 orient_;
@@ -584,7 +562,6 @@ private:
 #include <CGAL_ext/internal/Segment_walk_3_traversal.h>
 #include <CGAL_ext/internal/Segment_walk_3_cell_array_walk.h>
 #include <CGAL_ext/internal/Segment_walk_3_gap_search.h>
-#include <CGAL_ext/internal/Segment_walk_3_location.h>
 #include <CGAL_ext/internal/Segment_walk_3_batch.h>
 
 #endif // CGAL_EXT_SEGMENT_WALK_3_H

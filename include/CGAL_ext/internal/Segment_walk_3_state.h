@@ -87,17 +87,6 @@ struct Segment_walk_3<Triangulation, Domain_predicate>::Sink {
   }
 };
 
-// Keeps the last simplex (point location).
-template <class Triangulation, class Domain_predicate>
-struct Segment_walk_3<Triangulation, Domain_predicate>::Last_sink {
-  const Segment_walk_3* w;
-  Simplex last;
-  void operator()(const Simplex& s, double, double, bool) { last = s; }
-  void operator()(std::uint32_t ci, unsigned mask, double, double, bool) {
-    last = Simplex{w->cells_->cell_handles[ci], mask};
-  }
-};
-
 } // namespace CGAL_ext
 
 #endif // CGAL_EXT_INTERNAL_SEGMENT_WALK_3_STATE_H
