@@ -71,6 +71,18 @@ TEST_CASE("bad option values are usage errors naming the option", "[cli]") {
     CHECK(r.exit_code == 2);
     CHECK(r.err.find("--threads") != std::string::npos);
   }
+  // Whole numbers in decimal, whatever their spelling (010 is ten, not octal eight).
+  for (const char* good : {"010", "4.0", "1e1"}) {
+    const Run r = run("transport " + mesh + " --metric " + (work / "none.sol").string() + " --pairs " + pairs +
+                      " --threads " + good);
+    INFO(good << ": " << r.err);
+    CHECK(r.exit_code == 1); // past the command line: the missing .sol
+    CHECK(r.err.find("none.sol") != std::string::npos);
+  }
+  // -o=PATH would be a path starting with '='.
+  const Run equals = run("metric " + mesh + " --size 1 -o=x.sol");
+  CHECK(equals.exit_code == 2);
+  CHECK(equals.err.find("write -o PATH or --output=PATH") != std::string::npos);
   const Run both = run("metric " + mesh + " --expr '1,0,1,0,0,1' --size 1 -o x.sol");
   CHECK(both.exit_code == 2);
   CHECK(both.err.find("--expr") != std::string::npos);
@@ -273,7 +285,7 @@ TEST_CASE("metric writes a .sol from formulas, and rejects bad formulas and non-
       {"--expr '1, 0, 1' -o x.sol", 2, "expected 6 comma-separated expressions"},
       {"--expr '1, 0, 1, 0, 0, w' -o x.sol", 2, "Unexpected token \"w\""},
       {"--size 1 --expr '1, 0, 1, 0, 0, 1' -o x.sol", 2, "--expr excludes --size"},
-      {"--size 1", 2, "-o is required"},
+      {"--size 1", 2, "--output is required"},
       {"--expr '1, 2, 1, 0, 0, 1' -o x.sol", 1, "--expr at vertex 1 (0, 0, 0): the metric tensor is not positive definite"},
       {"--expr '1, 0, 1, 0, 0, 1/(z-1)^2' -o x.sol", 1, "--expr at vertex 2 (0, 0, 1): the metric tensor has a non-finite entry"},
       {"--size '1 - z' -o x.sol", 1, "--size at vertex 2 (0, 0, 1): the size h = 0 is not a positive finite number"},

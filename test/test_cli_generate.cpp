@@ -570,7 +570,7 @@ TEST_CASE("the pipeline's library functions write the files of generate, bit for
   const CGAL_ext::Pipeline_frame_field frames =
       CGAL_ext::generate_pipeline_frame_field(metric, context.options, CGAL_ext::Singularity_repair_options());
   CGAL_ext::write_pipeline_outputs(dir, mesh, frames);
-  CGAL_ext::write_pipeline_report(dir, CGAL_ext::pipeline_report(mesh, metric, frames, context).dump(2) + "\n");
+  CGAL_ext::write_pipeline_report(dir, CGAL_ext::pipeline_report_json(mesh, metric, frames, context));
 
   CHECK(metric.hex_size == 0.5);
   CHECK(frames.frames->size() == m.tetrahedra.size());

@@ -622,12 +622,12 @@ TEST_CASE("walk vs reference: through the vertex where two cubes touch", "[walk]
   }
 }
 
-TEST_CASE("point locator vs reference: every special point, from hints on the far side of holes", "[locate][reference]") {
+TEST_CASE("point locator vs reference: every special point, from hints and by the buckets alone", "[locate][reference]") {
   // Point_locator_3 against an exact brute force (exact_location, checked
   // against the walk reference on a sample): the vertices, edge midpoints, facet and cell
-  // centroids, and points around and outside each mesh, from no hint, from
-  // hints across the holes (where the visibility walk meets the boundary and
-  // the exact bucket test decides) and from every 37th cell. The Delaunay
+  // centroids, and points around and outside each mesh, from no hint and
+  // from every 37th cell, and the exact bucket test alone (the fallback where
+  // the visibility walk meets the boundary) on every point. The Delaunay
   // triangulation of points on a sphere has only long cells: its bucket grid
   // is coarsened to keep the cell references bounded.
   std::size_t located = 0;
@@ -672,6 +672,15 @@ TEST_CASE("point locator vs reference: every special point, from hints on the fa
         CHECK(walk_ref.vertices == ref.vertices);
       }
       const Tr::Point px(x[0], x[1], x[2]);
+      // The exact fallback alone, on every point.
+      const auto bucket = locate.locate_by_buckets(px);
+      INFO("point " << fmt(x) << ", buckets only");
+      std::vector<std::size_t> bucket_ids;
+      for (int j = 0; j < 4; ++j)
+        if (bucket.second & (1u << j)) bucket_ids.push_back(bucket.first->vertex(j)->info());
+      std::sort(bucket_ids.begin(), bucket_ids.end());
+      CHECK(int(bucket_ids.size()) - 1 == ref.dimension);
+      CHECK(bucket_ids == ref.vertices);
       for (std::size_t h = i % 5; h < hints.size(); h += 5) {
         INFO("point " << fmt(x) << " hint " << h << ", reference:\n" << to_string(std::vector<Reference_piece>{ref}));
         const auto l = locate(px, hints[h]);

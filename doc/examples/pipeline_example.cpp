@@ -57,8 +57,8 @@ int main(int argc, char** argv) {
       CGAL_ext::generate_pipeline_frame_field(field, options, CGAL_ext::Singularity_repair_options(), stage);
 
   CGAL_ext::write_pipeline_outputs(out_dir, mesh, frames);
-  const nlohmann::ordered_json report_json = CGAL_ext::pipeline_report(mesh, field, frames, context);
-  const std::string report = CGAL_ext::write_pipeline_report(out_dir, report_json.dump(2) + "\n");
+  const std::string report =
+      CGAL_ext::write_pipeline_report(out_dir, CGAL_ext::pipeline_report_json(mesh, field, frames, context));
   //! [pipeline]
   std::printf("%s  wrote %s and the files of CubeCover and ParaView\n",
               CGAL_ext::pipeline_summary_text(mesh, field, frames, context).c_str(), report.c_str());

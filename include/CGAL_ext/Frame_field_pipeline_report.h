@@ -89,8 +89,8 @@ inline nlohmann::ordered_json pipeline_repair_json(const std::optional<Singulari
 /// the shortest form that reads back as the same double; a number that is
 /// not finite is `null`. Header-only: it needs nlohmann-json.
 ///
-/// Write it with `write_pipeline_report(directory, pipeline_report(...).dump(2) + "\n")`,
-/// as `metric-frames generate` does.
+/// `pipeline_report_json()` gives it as the text that `metric-frames
+/// generate` writes.
 /// \param mesh the tet mesh (its vertex count is reported)
 /// \param metric the metric field and its scaling
 /// \param frames the frame field and its singularities
@@ -134,6 +134,23 @@ inline nlohmann::ordered_json pipeline_report(const Pipeline_tet_mesh& mesh, con
       {"linear_residual", st.linear_residual},
       {"refinement_iterations", st.refinement_iterations},
       {"stage_seconds", stage_seconds}};
+}
+
+/// \ingroup PkgCGALExtPipeline
+/// The text of `report.json`: `pipeline_report()` indented by two spaces,
+/// ending with a newline. Bytes of the input's name or the metric's that are
+/// not valid UTF-8 are written as U+FFFD (JSON text is UTF-8), never an error
+/// at the end of a long run. Write it with `write_pipeline_report()`.
+/// \param mesh the tet mesh (its vertex count is reported)
+/// \param metric the metric field and its scaling
+/// \param frames the frame field and its singularities
+/// \param context the input, the options and the stages' times
+/// \returns the JSON text
+inline std::string pipeline_report_json(const Pipeline_tet_mesh& mesh, const Pipeline_metric& metric,
+                                        const Pipeline_frame_field& frames, const Pipeline_report_context& context) {
+  return pipeline_report(mesh, metric, frames, context)
+             .dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) +
+         "\n";
 }
 
 } // namespace CGAL_ext

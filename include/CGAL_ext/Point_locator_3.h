@@ -31,16 +31,22 @@ namespace CGAL_ext {
 /// Exact point location: the lowest-dimensional simplex of the domain
 /// containing a point, or "outside".
 ///
-/// A visibility walk among domain cells, from the hint or from a coarse grid
-/// of cells (whichever is nearer), finds the cell in the common case. Where it cannot (it meets the
-/// boundary of a non-convex domain, or cycles in a triangulation that is not
+/// A hint cell that contains the point answers at once (4 orientation
+/// tests). Otherwise a visibility walk among domain cells, from the hint or
+/// from the cell of a coarse grid nearest to the point (whichever is nearer),
+/// finds the cell in the common case. Where it cannot (it meets the boundary
+/// of a non-convex domain, or cycles in a triangulation that is not
 /// Delaunay), the point is tested against the cells whose bounding boxes
-/// cover its bucket of a uniform grid: exact, and independent of the shape
-/// of the domain. Every side test is the traits' exact `Orientation_3`. The
-/// grids are built lazily, once, thread-safely, and are shared by copies of
-/// the locator; the bucket grid (about 8 cell references per domain cell at
-/// most) only on the first point the visibility walk cannot locate.
-/// `Segment_walk_3` locates the start of its segments with it.
+/// cover its bucket of a uniform grid: exact, and independent of the shape of
+/// the domain. The bucket grid holds at most about 8 cell references per
+/// domain cell: on meshes of long cells it is coarsened, down to one bucket
+/// (a scan of every cell). The buckets' exactness needs `double` coordinates
+/// (their bounding boxes are then exact); with another number type the
+/// fallback scans every domain cell. Every side test is the traits' exact
+/// `Orientation_3`. The grids are built lazily, once, thread-safely, and are
+/// shared by copies of the locator; the bucket grid only on the first point
+/// the visibility walk cannot locate. `Segment_walk_3` locates the start of
+/// its segments with it.
 ///
 /// \tparam Triangulation a model of `TetMeshTriangulation_3`, as for `Segment_walk_3`
 /// \tparam Domain_predicate a unary predicate on `Cell_handle`, true for the domain cells
@@ -101,14 +107,45 @@ public:
     for (const auto& v : {x.x(), x.y(), x.z()})
       if (!std::isfinite(CGAL::to_double(v)))
         throw std::invalid_argument("Point_locator_3: a coordinate of the point is not finite");
-    // Start from the hint or from the start grid's cell, whichever is nearer
-    // to x (a far hint would only lengthen the visibility walk).
-    Cell_handle c = start_cell(x);
-    if (c == Cell_handle()) return {}; // empty domain
-    if (is_domain_cell(hint) && squared_distance_to(hint, x) <= squared_distance_to(c, x)) c = hint;
+    Cell_handle c;
+    if (is_domain_cell(hint)) {
+      if (const unsigned m = containment_mask(hint, x)) return {hint, m};
+      // The hint, unless the start grid has a nearer cell in x's bucket (a
+      // far hint would only lengthen the visibility walk).
+      const Cell_handle g = bucket_start_cell(x);
+      c = g != Cell_handle() && squared_distance_to(g, x) < squared_distance_to(hint, x) ? g : hint;
+    } else {
+      c = start_cell(x);
+      if (c == Cell_handle()) return {}; // empty domain
+    }
     bool stopped = false;
     const Cell_face f = visibility_walk(x, c, stopped);
-    return stopped ? scan_bucket(x) : f;
+    return stopped ? locate_by_buckets(x) : f;
+  }
+
+  /// Locates `x` with the exact fallback alone: the cells whose bounding
+  /// boxes cover `x`'s bucket, each tested exactly, without the visibility
+  /// walk. For tests, and for points where the walk is known to be useless.
+  /// \param x the point
+  /// \returns the first such cell that contains `x` and its face (see `Cell_face`), or none
+  Cell_face locate_by_buckets(const Point& x) const {
+    ensure_buckets();
+    const Grids& gs = *grids_;
+    if (!double_coordinates) { // bounding boxes in double would not be exact: every domain cell
+      for (auto c : tr_->finite_cell_handles())
+        if (is_domain_cell(c))
+          if (const unsigned m = containment_mask(c, x)) return {c, m};
+      return {};
+    }
+    if (gs.bucket_cells.empty()) return {};
+    const Grid& g = gs.buckets;
+    const std::array<double, 3> p = coords(x);
+    const std::size_t b = g.index(g.coord(p[0], 0), g.coord(p[1], 1), g.coord(p[2], 2));
+    for (std::size_t k = gs.bucket_begin[b]; k < gs.bucket_begin[b + 1]; ++k) {
+      const Cell_handle c = gs.bucket_cells[k];
+      if (const unsigned m = containment_mask(c, x)) return {c, m};
+    }
+    return {}; // outside the closed domain
   }
 
   /// Whether `c` is a cell of the domain (finite and accepted by the predicate).
@@ -205,20 +242,19 @@ private:
     return positive;
   }
 
-  // The exact fallback: the first cell of x's bucket that contains x. A
-  // cell containing x has x in its bounding box, so in one of its buckets
-  // (Grid::coord is monotone): no containing cell is missed.
-  Cell_face scan_bucket(const Point& x) const {
-    ensure_buckets();
-    const Grid& g = grids_->buckets;
-    if (grids_->bucket_cells.empty()) return {};
+  // Why the bucket fallback is exact: a cell containing x has x in its
+  // bounding box, hence in one of its buckets (Grid::coord is monotone, and
+  // the boxes and x are rounded alike, not at all for double coordinates).
+  static constexpr bool double_coordinates =
+      std::is_same<typename Triangulation::Geom_traits::FT, double>::value;
+
+  // The start grid's cell in x's own bucket, or null (O(1): for a hint's rival).
+  Cell_handle bucket_start_cell(const Point& x) const {
+    ensure_start_grid();
+    const Grids& gs = *grids_;
+    if (gs.start.empty()) return Cell_handle();
     const std::array<double, 3> p = coords(x);
-    const std::size_t b = g.index(g.coord(p[0], 0), g.coord(p[1], 1), g.coord(p[2], 2));
-    for (std::size_t k = grids_->bucket_begin[b]; k < grids_->bucket_begin[b + 1]; ++k) {
-      const Cell_handle c = grids_->bucket_cells[k];
-      if (const unsigned m = containment_mask(c, x)) return {c, m};
-    }
-    return {}; // outside the closed domain
+    return gs.start[gs.box.index(gs.box.coord(p[0], 0), gs.box.coord(p[1], 1), gs.box.coord(p[2], 2))];
   }
 
   // A domain cell near x: from the start grid, searching outwards from x's bucket.
@@ -309,7 +345,7 @@ private:
     ensure_start_grid();
     std::call_once(grids_->bucket_once, [this] {
       Grids& gs = *grids_;
-      if (gs.start.empty()) return;
+      if (gs.start.empty() || !double_coordinates) return;
       std::vector<Cell_handle> cells;
       for (auto c : tr_->finite_cell_handles())
         if (is_domain_cell(c)) cells.push_back(c);

@@ -295,11 +295,7 @@ public:
   /// Whether `c` is a cell of the domain (finite and accepted by the predicate).
   /// \param c the cell
   /// \returns true for a finite cell that the predicate accepts; false for a null handle
-  bool is_domain_cell(Cell_handle c) const {
-    if (c == Cell_handle() || tr_->is_infinite(c)) return false;
-    if (std::is_same<Domain_predicate, Is_finite_cell<Tr>>::value) return true; // already decided
-    return in_domain_(c);
-  }
+  bool is_domain_cell(Cell_handle c) const { return locator_.is_domain_cell(c); }
 
 private:
   using EK = CGAL::Simple_cartesian<CGAL::Exact_rational>;

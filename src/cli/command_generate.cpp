@@ -159,7 +159,7 @@ int run_generate(const Generate_request& r) {
   stage("write outputs", write_timer.time(), r.out_dir);
   write_timer.reset();
   const std::string report =
-      write_pipeline_report(r.out_dir, pipeline_report(mesh, field, frames, context).dump(2) + "\n");
+      write_pipeline_report(r.out_dir, pipeline_report_json(mesh, field, frames, context));
   stage("write report", write_timer.time(), report);
   std::fprintf(stderr, "%s  %-32s %s\n", pipeline_summary_text(mesh, field, frames, context).c_str(), "outputs",
                r.out_dir.c_str());

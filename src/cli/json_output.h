@@ -16,9 +16,10 @@ namespace CGAL_ext::cli {
 /// JSON objects with their keys in the order they were written (the documented order).
 using Json = nlohmann::ordered_json;
 
-/// Prints `value` as one line of compact JSON on stdout.
+/// Prints `value` as one line of compact JSON on stdout. Bytes of its strings
+/// that are not valid UTF-8 (a Latin-1 file name) are written as U+FFFD.
 inline void print_json_line(const Json& value) {
-  const std::string line = value.dump() + "\n";
+  const std::string line = value.dump(-1, ' ', false, Json::error_handler_t::replace) + "\n";
   std::fputs(line.c_str(), stdout);
 }
 

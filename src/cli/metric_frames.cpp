@@ -98,11 +98,40 @@ const CLI::Validator positive_finite =
 const CLI::Validator non_negative_finite =
     number_check([](double v) { return v >= 0 && std::isfinite(v); }, "a finite number >= 0", "NON-NEGATIVE");
 
+// A whole number in [lo, hi], written in decimal (4, 4.0 and 1e1 alike);
+// the value is rewritten in plain digits, so that CLI11's conversion (base 0)
+// does not read 010 as octal.
+CLI::Validator whole_number(double lo, double hi) {
+  const std::string what = "a whole number from " + std::to_string(long(lo)) + " to " + std::to_string(long(hi));
+  return CLI::Validator(
+      [lo, hi, what](std::string& s) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(s.c_str(), &end);
+        if (s.empty() || *end != '\0' || !(v >= lo && v <= hi) || v != std::floor(v))
+          return Input_error::quote(s) + " is not " + what;
+        s = std::to_string(static_cast<long long>(v));
+        return std::string();
+      },
+      "INT");
+}
+
 // The `--threads N` option of the subcommands that run in parallel.
 void add_threads_option(CLI::App& app, std::size_t& threads) {
   app.add_option("--threads", threads, "worker threads (default: all cores); the output does not depend on N")
       ->type_name("N")
-      ->check(CLI::Range(std::size_t(1), std::size_t(1024)));
+      ->transform(whole_number(1, 1024));
+}
+
+// The output option -o (or --output): CLI11 would keep the '=' of -o=PATH.
+CLI::Option* add_output_option(CLI::App& app, std::string& path, const std::string& type, const std::string& help) {
+  return app.add_option("-o,--output", path, help)
+      ->type_name(type)
+      ->required()
+      ->check(CLI::Validator(
+          [](std::string& s) -> std::string {
+            return !s.empty() && s[0] == '=' ? Input_error::quote(s) + ": write -o PATH or --output=PATH" : "";
+          },
+          ""));
 }
 
 // info, its options bound to `r`.
@@ -187,9 +216,7 @@ CLI::App* add_metric(CLI::App& app, Metric_request& r) {
                                       "'0.05 + 0.1 * sqrt(x^2 + y^2)'")
                           ->type_name("EXPR")
                           ->excludes(expr);
-  sub->add_option("-o", r.out, "the output file (written to a temporary file, then renamed)")
-      ->type_name("OUT.sol")
-      ->required();
+  add_output_option(*sub, r.out, "OUT.sol", "the output file (written to a temporary file, then renamed)");
   sub->add_flag("--force", r.force, "replace OUT.sol if it exists (never the mesh itself)");
   sub->footer("Evaluates a metric given by formulas at the vertices of MESH and writes it\n"
               "as a Medit .sol file (SolAtVertices, one symmetric tensor per vertex, lower\n"
@@ -231,7 +258,7 @@ const char* generate_details =
 CLI::App* add_generate(CLI::App& app, Generate_request& r) {
   CLI::App& sub = *app.add_subcommand("generate", "frame field in a metric: frames.fra, mesh, VTU files, singular edges, report");
   sub.add_option("INPUT", r.input, "a .mesh tet mesh, a closed surface (.off .obj .stl .ply) or builtin:NAME")->required();
-  sub.add_option("-o", r.out_dir, "output directory (created if missing)")->type_name("OUTDIR")->required();
+  add_output_option(sub, r.out_dir, "OUTDIR", "output directory (created if missing)");
   sub.add_flag("--force", r.force, "replace output files that exist (never the input)");
   CLI::Option* sol = sub.add_option("--metric", r.sol_path,
                                     "one tensor per vertex (Medit .sol, type 3 or type 1); needs a .mesh INPUT "
@@ -280,7 +307,7 @@ CLI::App* add_generate(CLI::App& app, Generate_request& r) {
                "them)");
   sub.add_option("--max-iterations", r.options.max_refinement_iterations, "L-BFGS iterations at most")
       ->type_name("N")
-      ->check(CLI::Range(0, 100000000))
+      ->transform(whole_number(0, 1e8))
       ->capture_default_str();
   sub.add_option("--tol", r.options.transport_tolerance, "face transport tolerance in radians")
       ->type_name("T")
