@@ -289,7 +289,7 @@ public:
   /// \throws std::invalid_argument if a coordinate is not finite
   Piece locate(const Point& x, Cell_handle hint = Cell_handle()) const {
     check_finite(x, "locate");
-    return make_piece(locate_simplex(x, hint), 0.0, 0.0);
+    return locator_(x, hint);
   }
 
   /// Whether `c` is a cell of the domain (finite and accepted by the predicate).
