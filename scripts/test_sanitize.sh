@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The sanitized part of CI: builds ./build-sanitize (Clang, ASan + UBSan, the
 # libFuzzer harnesses), runs the test suite there, then each fuzzer for a
-# fixed time from its seeds (default 15 s; FUZZ_SECONDS overrides).
+# fixed time from its seeds (default 12 s; FUZZ_SECONDS overrides).
 # Installs what it needs (clang, its sanitizer and fuzzer runtimes).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,5 +26,5 @@ excluded+='|reference: reversal symmetry|from 1e-300 I to 1e300 I'
 ctest --test-dir build-sanitize --output-on-failure --timeout 900 -j2 -E "$excluded"
 echo "[sanitize] build and tests: $(( $(date +%s) - start )) s" >&2
 # A fixed seed: the same run on every machine.
-FUZZ_SEED=${FUZZ_SEED:-1} CGAL_EXT_SKIP_BUILD=1 bash scripts/fuzz.sh "${FUZZ_SECONDS:-15}"
+FUZZ_SEED=${FUZZ_SEED:-1} CGAL_EXT_SKIP_BUILD=1 bash scripts/fuzz.sh "${FUZZ_SECONDS:-12}"
 echo "[sanitize] wall time $(( $(date +%s) - start )) s" >&2
