@@ -332,6 +332,16 @@ TEST_CASE("generate rejects bad input with a clear message", "[cli][generate]") 
       CHECK(r.err.find("--hex-size") != std::string::npos);
     }
   }
+  SECTION("repair restarts that are not a whole number, or without the repair") {
+    for (const char* n : {"-1", "1.5", "x"}) {
+      const Run r = run("generate " + cube + " --repair-restarts " + n + " -o " + out);
+      CHECK(r.exit_code == 2);
+      CHECK(r.err.find("--repair-restarts") != std::string::npos);
+    }
+    const Run r = run("generate " + cube + " --no-repair --repair-restarts 2 -o " + out);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find("--no-repair excludes --repair-restarts") != std::string::npos);
+  }
   SECTION("a hex size so small that the scaled metric overflows") {
     const Run r = run("generate " + cube + " --metric-const '1e300 0 1e300 0 0 1e300' --hex-size 1e-100 -o " + out);
     CHECK(r.exit_code == 1);
@@ -387,6 +397,7 @@ TEST_CASE("generate meshes a built-in shape with Mesh_3", "[cli][generate]") {
   CHECK(r.err.find("[stage] repair") != std::string::npos);
   CHECK(number(report, "/repair/non_meshable_after") == number(report, "/singularities/non_meshable_edges"));
   CHECK(number(report, "/repair/non_meshable_after") <= number(report, "/repair/non_meshable_before"));
+  CHECK(number(report, "/repair/regions_from_restarts") <= number(report, "/repair/regions_kept"));
   for (double c : sing.cell_data.at("curve").values) CHECK(c >= 1);
   CHECK(sing.point_data.at("node").values.size() == sing.number_of_points);
   CHECK(sing.point_data.at("vertex_index").values.size() == sing.number_of_points);

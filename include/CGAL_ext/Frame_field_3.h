@@ -19,6 +19,7 @@
 #include <CGAL_ext/internal/deterministic_parallel.h>
 #include <CGAL_ext/internal/lbfgs_on_rotations.h>
 #include <CGAL_ext/internal/preconditioned_conjugate_gradient.h>
+#include <CGAL_ext/internal/seeded_rotation.h>
 
 #include <CGAL/Real_timer.h>
 
@@ -268,6 +269,16 @@ public:
   double energy_density(std::size_t i) const {
     return std::ldexp(0.5 * e_.local_smoothness(i, s_) / e_.volume[i], e_.weight_exponent);
   }
+  /// Half the smoothness energy of the interior faces of tetrahedron `i`:
+  /// `sum_f w_f |s_i - D(T(j->i)) s_j|^2 / 2`. Summed over all tetrahedra it
+  /// is `smoothness_energy()`; summed over a set that holds some changed
+  /// tetrahedra and their face neighbours, its change is the change of
+  /// `smoothness_energy()`.
+  /// \param i a tetrahedron index
+  /// \returns the energy, in the units of `smoothness_energy()`
+  double local_smoothness_energy(std::size_t i) const {
+    return std::ldexp(0.5 * e_.local_smoothness(i, s_), e_.weight_exponent);
+  }
   /// The boundary faces, in tetrahedron order.
   /// \returns one `Frame_field_boundary_face` per boundary face of the domain
   const std::vector<Boundary_face>& boundary_faces() const { return e_.boundary; }
@@ -304,15 +315,23 @@ public:
   };
 
   /// Re-optimises the frames of some tetrahedra, all others fixed, as
-  /// `compute()` does globally: a start (see `Reoptimize_start`) with the
-  /// hard constraints applied, then L-BFGS on their rotations. The result
-  /// depends on the surrounding frames, not on the previous frames of the
-  /// tetrahedra given. The statistics are not updated (see
-  /// `update_statistics()`). Used by `repair_singularities()`.
+  /// `compute()` does globally: a start (see `Reoptimize_start`), turned
+  /// if `seed` is not 0, with the hard constraints applied, then L-BFGS on
+  /// their rotations. The result depends on the surrounding frames, the
+  /// start and the seed, not on the previous frames of the tetrahedra given
+  /// nor on the thread count. The statistics are not updated (see
+  /// `update_statistics()`). Used by `repair_singularities()`, which
+  /// restarts from several seeds to leave a local minimum.
   /// \param tets the tetrahedron indices to re-optimise (distinct)
   /// \param start how the frames start
+  /// \param seed if not 0, each start frame is turned by a pseudo-random
+  ///        rotation that depends on `seed` and the tetrahedron index only:
+  ///        about a direction uniform on the sphere, by an angle uniform in
+  ///        [0, `max_angle`]
+  /// \param max_angle the largest angle of those rotations, in radians
   /// \returns the L-BFGS iterations
-  int reoptimize(const std::vector<std::size_t>& tets, Reoptimize_start start = Reoptimize_start::relaxed) {
+  int reoptimize(const std::vector<std::size_t>& tets, Reoptimize_start start = Reoptimize_start::relaxed,
+                 std::uint64_t seed = 0, double max_angle = 0) {
     prepare(opt_);
     const std::size_t m = tets.size();
     if (m == 0) return 0;
@@ -323,6 +342,10 @@ public:
     std::vector<std::size_t> local(size(), std::size_t(-1));
     for (std::size_t k = 0; k < m; ++k) set.marked[tets[k]] = 1, local[tets[k]] = k;
     if (start != Reoptimize_start::propagated || !propagate(tets, local)) relax(tets, set, local);
+    if (seed != 0)
+      internal::parallel_for_each_index(m, [&](std::size_t k) {
+        q_[tets[k]] = (internal::seeded_rotation(seed, tets[k], max_angle) * q_[tets[k]]).normalized();
+      });
     internal::parallel_for_each_index(m, [&](std::size_t k) { constrain(tets[k]); });
     int evaluations = 0;
     bool limit = false;

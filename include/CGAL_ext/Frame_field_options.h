@@ -5,7 +5,8 @@
 
 /// \file Frame_field_options.h
 /// The plain data of `Frame_field_3`: the options of `compute()`, the
-/// statistics it returns, and the boundary faces.
+/// statistics it returns, the boundary faces, and the options of
+/// `repair_singularities()`.
 
 #include <CGAL_ext/Cell_transport_3.h>
 
@@ -14,6 +15,7 @@
 #include <cstddef>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace CGAL_ext {
 
@@ -151,6 +153,33 @@ struct Frame_field_boundary_face {
   Eigen::Vector3d normal;    ///< outward unit normal
   Eigen::Vector3d direction; ///< `A^{-1} n / |A^{-1} n|`, in the frame's (rotation) space
   double metric_area;        ///< area measured in the metric
+};
+
+/// \ingroup PkgCGALExtFrames
+/// Options of `repair_singularities()`.
+struct Singularity_repair_options {
+  /// The radii of the regions re-optimised around the non-meshable edges,
+  /// in rings of tetrahedra sharing a vertex: one round per radius, in
+  /// order, while non-meshable edges remain. A larger region gives the
+  /// re-optimisation more room and other boundary values.
+  std::vector<int> radii = {2, 3, 4};
+  /// Restarts per region in each round, in the order of `radii` (none in
+  /// the rounds past the end of the list): after the relaxed and the
+  /// propagated starts, for the regions that still have non-meshable edges,
+  /// the relaxed start with every frame turned by a pseudo-random rotation
+  /// (`Frame_field_3::reoptimize()` with a seed), which leads L-BFGS to
+  /// other local minima. The seeds depend on the round, the start and the
+  /// region, never on the thread count. By default only the second round
+  /// restarts (chosen by measurement, doc/benchmarks.md): restarts in the
+  /// first round kept frames that the later rounds could not improve, and
+  /// in the last round, whose regions are the largest, they cost more for
+  /// less.
+  std::vector<int> restarts = {0, 6, 0};
+  /// The largest angle of a restart's turns, in degrees.
+  double restart_angle_deg = 90;
+  /// If set, called after each round with its number (from 1), the radius,
+  /// the regions tried and accepted, and the non-meshable edges left.
+  std::function<void(int round, int radius, std::size_t tried, std::size_t accepted, std::size_t left)> progress;
 };
 
 } // namespace CGAL_ext

@@ -74,6 +74,7 @@ inline nlohmann::ordered_json pipeline_repair_json(const std::optional<Singulari
           {"batches", fix->batches},
           {"regions_tried", fix->regions_tried},
           {"regions_kept", fix->regions_accepted},
+          {"regions_from_restarts", fix->regions_from_restarts},
           {"tets_changed", fix->tets_changed},
           {"energy_before", fix->energy_before},
           {"energy_after", fix->energy_after}};

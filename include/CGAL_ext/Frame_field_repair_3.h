@@ -9,12 +9,15 @@
 
 #include <CGAL_ext/Frame_field_matchings_3.h>
 #include <CGAL_ext/Frame_field_singularities_3.h>
+#include <CGAL_ext/internal/seeded_rotation.h>
 
 #include <CGAL/Real_timer.h>
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -23,19 +26,6 @@
 #include <vector>
 
 namespace CGAL_ext {
-
-/// \ingroup PkgCGALExtFrames
-/// Options of `repair_singularities()`.
-struct Singularity_repair_options {
-  /// The radii of the regions re-optimised around the non-meshable edges,
-  /// in rings of tetrahedra sharing a vertex: one round per radius, in
-  /// order, while non-meshable edges remain. A larger region gives the
-  /// re-optimisation more room and other boundary values.
-  std::vector<int> radii = {2, 3, 4};
-  /// If set, called after each round with its number (from 1), the radius,
-  /// the regions tried and accepted, and the non-meshable edges left.
-  std::function<void(int round, int radius, std::size_t tried, std::size_t accepted, std::size_t left)> progress;
-};
 
 /// \ingroup PkgCGALExtFrames
 /// What `repair_singularities()` did.
@@ -49,6 +39,8 @@ struct Singularity_repair_report {
   /// re-optimised, and regions kept (fewer non-meshable edges than before).
   std::size_t rounds = 0, batches = 0, regions_tried = 0, regions_accepted = 0;
   /** @} */
+  /// Regions kept whose frames came from a restart (`Singularity_repair_options::restarts`).
+  std::size_t regions_from_restarts = 0;
   /// Tetrahedra in the regions kept.
   std::size_t tets_changed = 0;
   /** @{ */
@@ -103,8 +95,8 @@ public:
   using Start = typename Frame_field::Reoptimize_start;
   using Edges = std::vector<std::array<std::size_t, 2>>;
 
-  Singularity_repairer(Frame_field& ff, Singularity_repair_report& report)
-      : ff_(ff), report_(report), matchings_(ff), in_(ff.size(), 0), inner_(ff.size(), 0), label_(ff.size(), -1) {
+  Singularity_repairer(Frame_field& ff, const Singularity_repair_options& options, Singularity_repair_report& report)
+      : ff_(ff), options_(options), report_(report), matchings_(ff), in_(ff.size(), 0), inner_(ff.size(), 0), label_(ff.size(), -1) {
     const std::size_t n = ff.size();
     std::size_t vertices = 0;
     for (std::size_t i = 0; i < n; ++i)
@@ -135,12 +127,9 @@ public:
       if (bad_.empty()) break;
       tried += batch.size();
       ++report_.batches;
-      // The relaxed start (as the whole field was made), then, for the
-      // regions it did not improve, the propagated one.
-      std::vector<std::size_t> pending = batch;
-      for (const Start start : {Start::relaxed, Start::propagated})
-        if (!bad_.empty() && !pending.empty()) kept += try_start(start, regions, pending);
+      kept += repair_batch(regions, batch);
     }
+    ++round_;
     return {tried, kept};
   }
 
@@ -206,15 +195,18 @@ private:
     return out;
   }
 
-  // Re-optimises the pending regions of a batch from one start, keeps those
-  // with fewer non-meshable edges, restores the others (left in `pending`).
-  // Returns the regions kept.
-  std::size_t try_start(Start start, const std::vector<std::vector<std::size_t>>& regions,
-                        std::vector<std::size_t>& pending) {
+  // Re-optimises the regions of a batch (all other frames fixed) from each
+  // start in turn: the relaxed one (as the whole field was made), the
+  // propagated one, then the restarts, each start for the regions that
+  // still have non-meshable edges. Keeps for each region the frames with the
+  // fewest non-meshable edges, the lowest energy among equals, if fewer than
+  // before; restores the others bit for bit. Returns the regions kept.
+  std::size_t repair_batch(const std::vector<std::vector<std::size_t>>& regions, const std::vector<std::size_t>& batch) {
+    const std::size_t m = batch.size();
     std::vector<std::size_t> tets, seeds;
-    for (std::size_t m = 0; m < pending.size(); ++m)
-      for (std::size_t i : regions[pending[m]]) {
-        label_[i] = std::int64_t(m), tets.push_back(i);
+    for (std::size_t r = 0; r < m; ++r)
+      for (std::size_t i : regions[batch[r]]) {
+        label_[i] = std::int64_t(r), tets.push_back(i);
         for (int k = 0; k < 4; ++k) seeds.push_back(vertex(i, k));
       }
     // A change of the regions can retype only the edges within `reach`
@@ -236,34 +228,97 @@ private:
         if (is_inner(e)) out.push_back(e);
       return out;
     };
-    auto count = [&](const Edges& edges) {
-      std::vector<std::size_t> c(pending.size(), 0);
-      for (const auto& e : edges) {
-        const std::size_t i = tet_around(e, [&](std::size_t t) { return label_[t] >= 0; });
-        if (i < ff_.size()) ++c[std::size_t(label_[i])];
-      }
+    // A region is judged by the edges its frames can retype: those with a
+    // tetrahedron within `reach` rings of it (an edge near two regions
+    // counts for both), so that a start cannot gain by pushing a defect just
+    // outside the region's own tetrahedra.
+    std::vector<std::vector<std::size_t>> near(m);
+    for (std::size_t r = 0; r < m; ++r) {
+      std::vector<std::size_t> vertices;
+      for (std::size_t i : regions[batch[r]])
+        for (int k = 0; k < 4; ++k) vertices.push_back(vertex(i, k));
+      std::sort(vertices.begin(), vertices.end());
+      vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+      near[r] = region(vertices, reach);
+    }
+    auto count = [&](const Edges& edges) { // per region
+      std::vector<std::size_t> c(m, 0);
+      for (const auto& e : edges)
+        for (std::size_t r = 0; r < m; ++r)
+          c[r] += tet_around(e, [&](std::size_t t) { return std::binary_search(near[r].begin(), near[r].end(), t); }) <
+                  ff_.size();
       return c;
+    };
+    // The energy that a region's frames change: that of its tetrahedra and
+    // their face neighbours (which meet no other region of the batch, as
+    // they share three vertices with it).
+    std::vector<std::vector<std::size_t>> energy_set(m);
+    for (std::size_t r = 0; r < m; ++r) {
+      std::vector<std::size_t>& set = energy_set[r];
+      for (std::size_t i : regions[batch[r]]) {
+        set.push_back(i);
+        for (int f = 0; f < 4; ++f)
+          if (ff_.neighbor(i, f) >= 0) set.push_back(std::size_t(ff_.neighbor(i, f)));
+      }
+      std::sort(set.begin(), set.end());
+      set.erase(std::unique(set.begin(), set.end()), set.end());
+    }
+    auto energy = [&](std::size_t r) {
+      double e = 0;
+      for (std::size_t i : energy_set[r]) e += ff_.local_smoothness_energy(i);
+      return e;
     };
     Edges old_here; // typed as the examination types them (see above)
     for (const auto& e : bad_)
       if (is_inner(e)) old_here.push_back(e);
-    const std::vector<std::size_t> before = count(old_here);
+    struct Best {
+      std::size_t count;
+      double energy;
+      std::vector<Eigen::Quaterniond> frames; // empty: the original ones
+      int start;                              // the start that gave them
+    };
+    std::vector<Best> best(m);
+    {
+      const std::vector<std::size_t> before = count(old_here);
+      for (std::size_t r = 0; r < m; ++r) best[r] = {before[r], energy(r), {}, -1};
+    }
     std::vector<Eigen::Quaterniond> saved(tets.size());
     for (std::size_t k = 0; k < tets.size(); ++k) saved[k] = ff_.rotation_quaternion(tets[k]);
-    ff_.reoptimize(tets, start);
-    matchings_.update(ff_, tets);
-    Edges here = examine();
-    const std::vector<std::size_t> after = count(here);
-    std::vector<std::size_t> restored;
-    for (std::size_t k = 0; k < tets.size(); ++k)
-      if (after[std::size_t(label_[tets[k]])] >= before[std::size_t(label_[tets[k]])]) {
-        ff_.set_rotation(tets[k], saved[k]);
-        restored.push_back(tets[k]);
+
+    const int starts =
+        2 + (std::size_t(round_) < options_.restarts.size() ? std::max(0, options_.restarts[std::size_t(round_)]) : 0);
+    for (int s = 0; s < starts; ++s) {
+      std::vector<std::size_t> open, open_tets; // the regions still short of zero
+      for (std::size_t r = 0; r < m; ++r)
+        if (best[r].count > 0) open.push_back(r);
+      if (open.empty()) break;
+      for (std::size_t r : open) open_tets.insert(open_tets.end(), regions[batch[r]].begin(), regions[batch[r]].end());
+      // Restart seeds differ between rounds, starts and batches (by their first tetrahedron).
+      const std::uint64_t seed = s < 2 ? 0 : split_seed(std::uint64_t(round_), std::uint64_t(s), tets.front());
+      ff_.reoptimize(open_tets, s == 1 ? Start::propagated : Start::relaxed, seed,
+                     options_.restart_angle_deg * M_PI / 180);
+      matchings_.update(ff_, open_tets);
+      const std::vector<std::size_t> now = count(examine());
+      for (std::size_t r : open) {
+        const double e = energy(r);
+        if (now[r] < best[r].count || (now[r] == best[r].count && !best[r].frames.empty() && e < best[r].energy)) {
+          best[r].count = now[r], best[r].energy = e, best[r].start = s;
+          best[r].frames.clear();
+          for (std::size_t i : regions[batch[r]]) best[r].frames.push_back(ff_.rotation_quaternion(i));
+        }
       }
-    if (!restored.empty()) {
-      matchings_.update(ff_, restored);
-      here = examine();
     }
+    // Each region's best frames, or its original ones.
+    for (std::size_t k = 0; k < tets.size(); ++k) {
+      const Best& b = best[std::size_t(label_[tets[k]])];
+      if (b.frames.empty()) ff_.set_rotation(tets[k], saved[k]);
+    }
+    for (std::size_t r = 0; r < m; ++r)
+      if (!best[r].frames.empty())
+        for (std::size_t k = 0; k < regions[batch[r]].size(); ++k)
+          ff_.set_rotation(regions[batch[r]][k], best[r].frames[k]);
+    matchings_.update(ff_, tets);
+    const Edges here = examine();
     for (std::size_t i : tets) label_[i] = -1;
     if (here.size() >= old_here.size()) { // a curve's typing reaches past a region: undo
       for (std::size_t k = 0; k < tets.size(); ++k) ff_.set_rotation(tets[k], saved[k]);
@@ -277,26 +332,30 @@ private:
     now.insert(now.end(), here.begin(), here.end());
     bad_.swap(now);
     for (std::size_t i : inner) inner_[i] = 0;
-    std::vector<std::size_t> still;
     std::size_t kept = 0;
-    for (std::size_t m = 0; m < pending.size(); ++m) {
-      if (after[m] < before[m]) {
+    for (std::size_t r = 0; r < m; ++r)
+      if (!best[r].frames.empty()) {
         ++kept;
-        report_.tets_changed += regions[pending[m]].size();
-      } else {
-        still.push_back(pending[m]);
+        report_.regions_from_restarts += best[r].start >= 2;
+        report_.tets_changed += regions[batch[r]].size();
       }
-    }
-    pending.swap(still);
     return kept;
   }
 
+  // A restart's seed, never 0 (0 is no restart).
+  static std::uint64_t split_seed(std::uint64_t round, std::uint64_t start, std::uint64_t tet) {
+    const std::uint64_t h = split_mix_64(split_mix_64(split_mix_64(round) ^ start) ^ tet);
+    return h == 0 ? 1 : h;
+  }
+
   Frame_field& ff_;
+  const Singularity_repair_options& options_;
   Singularity_repair_report& report_;
+  int round_ = 0;
   Frame_field_matchings_3<Frame_field> matchings_;
   std::vector<std::size_t> first_, star_; // the tetrahedra around each vertex (compressed rows)
   std::vector<char> in_, reached_, inner_;
-  std::vector<std::int64_t> label_; // the pending region of a tetrahedron, or -1
+  std::vector<std::int64_t> label_; // the region of the batch that holds a tetrahedron, or -1
   Edges bad_;
 };
 
@@ -311,18 +370,23 @@ private:
 /// `radius` vertex rings of its vertices: its region. Regions that share no
 /// vertex form a batch and are re-optimised together with all other frames
 /// fixed (`Frame_field_3::reoptimize()`, hard boundary constraints kept):
-/// first from the `relaxed` start, then, for the regions not improved, from
-/// the `propagated` one. An edge's tetrahedra meet at most one region of a
-/// batch, so each region is judged alone: it is kept if the edges around its
-/// tetrahedra then hold fewer non-meshable edges, and restored bit for bit
-/// otherwise. Only the edges within `singular_curve_direction_span + 1`
+/// from the `relaxed` start, the `propagated` one, and the round's restarts
+/// (`Singularity_repair_options::restarts`: the relaxed start turned by
+/// seeded random rotations), each start for the regions that still have
+/// non-meshable edges. Each region is judged alone, by the non-meshable
+/// edges its frames can retype (those within
+/// `singular_curve_direction_span + 1` rings of it): of all its starts it
+/// keeps the frames with the fewest (the lowest smoothness energy among
+/// equals) if fewer than before, and is restored bit for bit otherwise.
+/// Only the edges within `singular_curve_direction_span + 1`
 /// rings of the regions can change type; they are typed from the edges
 /// within `singular_curve_direction_span` more rings (the matchings are
 /// updated, not recomputed), so a batch costs time in proportion to its
 /// regions; if their count did not drop, the batch is undone. A final count
 /// over all edges checks the result: the field is never left with more
-/// non-meshable edges than before. Deterministic: regions, their order and
-/// the optimisation do not depend on the thread count.
+/// non-meshable edges than before. Deterministic: regions, their order, the
+/// restarts' rotations and the optimisation do not depend on the thread
+/// count.
 ///
 /// \tparam Frame_field a `Frame_field_3`
 /// \param ff the frame field, after `compute()`; its frames are changed in
@@ -335,7 +399,7 @@ Singularity_repair_report repair_singularities(Frame_field& ff, const Singularit
   timer.start();
   Singularity_repair_report report;
   report.energy_before = report.energy_after = ff.smoothness_energy();
-  internal::Singularity_repairer<Frame_field> repairer(ff, report);
+  internal::Singularity_repairer<Frame_field> repairer(ff, options, report);
   report.non_meshable_before = report.non_meshable_after = repairer.non_meshable().size();
   if (report.non_meshable_before == 0) return report;
   std::vector<Eigen::Quaterniond> original(ff.size()); // to undo everything if the final check fails
@@ -353,7 +417,7 @@ Singularity_repair_report repair_singularities(Frame_field& ff, const Singularit
   if (report.non_meshable_after > report.non_meshable_before) {
     for (std::size_t i = 0; i < ff.size(); ++i) ff.set_rotation(i, original[i]);
     report.non_meshable_after = report.non_meshable_before;
-    report.regions_accepted = report.tets_changed = 0;
+    report.regions_accepted = report.regions_from_restarts = report.tets_changed = 0;
   }
   ff.update_statistics();
   report.energy_after = ff.smoothness_energy();

@@ -64,6 +64,8 @@ struct Generate_request {
   std::size_t threads = 0; ///< 0: all cores
   /// The frame field's options that the command line sets.
   Frame_field_options options;
+  /// The restarts of the repair's second round (unless `no_repair`).
+  int repair_restarts = Singularity_repair_options().restarts.at(1);
 };
 /// Writes the frame field, its singularities and the output files.
 int run_generate(const Generate_request& request);

@@ -302,9 +302,16 @@ CLI::App* add_generate(CLI::App& app, Generate_request& r) {
       ->check(number_check([](double v) { return v > 0 && v <= 180; }, "an angle in degrees in (0, 180]",
                            "ANGLE"))
       ->capture_default_str();
-  sub.add_flag("--no-repair", r.no_repair,
+  CLI::Option* no_repair = sub.add_flag("--no-repair", r.no_repair,
                "keep the non-meshable singular edges the optimiser leaves (default: re-optimise the regions around "
                "them)");
+  sub.add_option("--repair-restarts", r.repair_restarts,
+                 "random restarts per region in the repair's second round (radius 3), after its two deterministic "
+                 "starts: more can find more meshable minima, at more time (0: none)")
+      ->type_name("N")
+      ->transform(whole_number(0, 1e6))
+      ->excludes(no_repair)
+      ->capture_default_str();
   sub.add_option("--max-iterations", r.options.max_refinement_iterations, "L-BFGS iterations at most")
       ->type_name("N")
       ->transform(whole_number(0, 1e8))

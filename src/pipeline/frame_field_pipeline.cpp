@@ -207,7 +207,8 @@ Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric
     const Singularity_repair_report& fix = *r.repair;
     clock("repair", std::to_string(fix.non_meshable_before) + " -> " + std::to_string(fix.non_meshable_after) +
                         " non-meshable edges; " + std::to_string(fix.regions_accepted) + " of " +
-                        std::to_string(fix.regions_tried) + " regions kept, energy " +
+                        std::to_string(fix.regions_tried) + " regions kept (" +
+                        std::to_string(fix.regions_from_restarts) + " from restarts), energy " +
                         format_number(fix.energy_before, 10) + " -> " + format_number(fix.energy_after, 10));
   }
   r.matchings = std::make_unique<Pipeline_matchings_3>(ff);
