@@ -134,10 +134,15 @@ CLI::Option* add_output_option(CLI::App& app, std::string& path, const std::stri
           ""));
 }
 
+// The positional MESH of info, walk and transport.
+void add_mesh_argument(CLI::App& app, std::string& mesh) {
+  app.add_option("MESH", mesh, "a tetrahedral Medit .mesh file")->required();
+}
+
 // info, its options bound to `r`.
 CLI::App* add_info(CLI::App& app, Info_request& r) {
   CLI::App* sub = app.add_subcommand("info", "print counts, bounding box, volume and dihedral angles of a tet mesh");
-  sub->add_option("MESH", r.mesh, "a tetrahedral Medit .mesh file")->required();
+  add_mesh_argument(*sub, r.mesh);
   sub->add_flag("--json", r.json,
                 "print one JSON object instead: the same figures, numbers that read back exactly, "
                 "tetrahedra numbered from 1");
@@ -151,7 +156,7 @@ CLI::App* add_info(CLI::App& app, Info_request& r) {
 // walk, its options bound to `r`.
 CLI::App* add_walk(CLI::App& app, Walk_request& r) {
   CLI::App* sub = app.add_subcommand("walk", "list every vertex, edge, facet and tet that segments meet, as JSON lines");
-  sub->add_option("MESH", r.mesh, "a tetrahedral Medit .mesh file")->required();
+  add_mesh_argument(*sub, r.mesh);
   sub->add_option("--segments", r.segments, "the segments, one per line: qx qy qz px py pz (- for standard input)")
       ->type_name("FILE")
       ->required();
@@ -172,7 +177,7 @@ CLI::App* add_walk(CLI::App& app, Walk_request& r) {
 // transport, its options bound to `r`.
 CLI::App* add_transport(CLI::App& app, Transport_request& r) {
   CLI::App* sub = app.add_subcommand("transport", "transport T(a->b) of a metric between point pairs, as JSON lines");
-  sub->add_option("MESH", r.mesh, "a tetrahedral Medit .mesh file")->required();
+  add_mesh_argument(*sub, r.mesh);
   sub->add_option("--metric", r.metric, "the metric: one tensor per vertex of MESH (.sol, type 3 tensors or type 1 sizes)")
       ->type_name("SOL")
       ->required();
