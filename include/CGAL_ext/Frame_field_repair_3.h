@@ -96,7 +96,7 @@ public:
   using Edges = std::vector<std::array<std::size_t, 2>>;
 
   Singularity_repairer(Frame_field& ff, const Singularity_repair_options& options, Singularity_repair_report& report)
-      : ff_(ff), options_(options), report_(report), matchings_(ff), in_(ff.size(), 0), inner_(ff.size(), 0), label_(ff.size(), -1) {
+      : ff_(ff), options_(options), report_(report), matchings_(ff), in_(ff.size(), 0), inner_(ff.size(), 0) {
     const std::size_t n = ff.size();
     std::size_t vertices = 0;
     for (std::size_t i = 0; i < n; ++i)
@@ -117,9 +117,9 @@ public:
   // The matchings of the current frames (updated after every change).
   const Frame_field_matchings_3<Frame_field>& matchings() const { return matchings_; }
 
-  // One round: regions of `radius` rings around the clusters, in batches of
-  // regions that share no vertex. Returns the regions tried and kept.
-  std::pair<std::size_t, std::size_t> round(int radius) {
+  // Round `index` (from 0): regions of `radius` rings around the clusters, in
+  // batches of regions that share no vertex. Returns the regions tried and kept.
+  std::pair<std::size_t, std::size_t> round(std::size_t index, int radius) {
     std::vector<std::vector<std::size_t>> regions;
     for (const auto& cluster : edge_clusters(bad_)) regions.push_back(region(cluster, radius));
     std::size_t tried = 0, kept = 0;
@@ -127,9 +127,8 @@ public:
       if (bad_.empty()) break;
       tried += batch.size();
       ++report_.batches;
-      kept += repair_batch(regions, batch);
+      kept += repair_batch(index, regions, batch);
     }
-    ++round_;
     return {tried, kept};
   }
 
@@ -201,12 +200,13 @@ private:
   // still have non-meshable edges. Keeps for each region the frames with the
   // fewest non-meshable edges, the lowest energy among equals, if fewer than
   // before; restores the others bit for bit. Returns the regions kept.
-  std::size_t repair_batch(const std::vector<std::vector<std::size_t>>& regions, const std::vector<std::size_t>& batch) {
+  std::size_t repair_batch(std::size_t round, const std::vector<std::vector<std::size_t>>& regions,
+                           const std::vector<std::size_t>& batch) {
     const std::size_t m = batch.size();
     std::vector<std::size_t> tets, seeds;
     for (std::size_t r = 0; r < m; ++r)
       for (std::size_t i : regions[batch[r]]) {
-        label_[i] = std::int64_t(r), tets.push_back(i);
+        tets.push_back(i);
         for (int k = 0; k < 4; ++k) seeds.push_back(vertex(i, k));
       }
     // A change of the regions can retype only the edges within `reach`
@@ -216,7 +216,23 @@ private:
     std::sort(seeds.begin(), seeds.end());
     seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
     const int reach = singular_curve_direction_span + 1;
-    const std::vector<std::size_t> inner = region(seeds, reach);
+    // A region is judged by the edges its frames can retype: those with a
+    // tetrahedron within `reach` rings of it (an edge near two regions
+    // counts for both), so that a start cannot gain by pushing a defect just
+    // outside the region's own tetrahedra. Their union is `inner`.
+    std::vector<std::vector<std::size_t>> near(m);
+    std::vector<std::size_t> inner;
+    for (std::size_t r = 0; r < m; ++r) {
+      std::vector<std::size_t> vertices;
+      for (std::size_t i : regions[batch[r]])
+        for (int k = 0; k < 4; ++k) vertices.push_back(vertex(i, k));
+      std::sort(vertices.begin(), vertices.end());
+      vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+      near[r] = region(vertices, reach);
+      inner.insert(inner.end(), near[r].begin(), near[r].end());
+    }
+    std::sort(inner.begin(), inner.end());
+    inner.erase(std::unique(inner.begin(), inner.end()), inner.end());
     const std::vector<std::size_t> examined = region(seeds, reach + singular_curve_direction_span);
     for (std::size_t i : inner) inner_[i] = 1;
     auto is_inner = [&](const std::array<std::size_t, 2>& e) {
@@ -228,19 +244,6 @@ private:
         if (is_inner(e)) out.push_back(e);
       return out;
     };
-    // A region is judged by the edges its frames can retype: those with a
-    // tetrahedron within `reach` rings of it (an edge near two regions
-    // counts for both), so that a start cannot gain by pushing a defect just
-    // outside the region's own tetrahedra.
-    std::vector<std::vector<std::size_t>> near(m);
-    for (std::size_t r = 0; r < m; ++r) {
-      std::vector<std::size_t> vertices;
-      for (std::size_t i : regions[batch[r]])
-        for (int k = 0; k < 4; ++k) vertices.push_back(vertex(i, k));
-      std::sort(vertices.begin(), vertices.end());
-      vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-      near[r] = region(vertices, reach);
-    }
     auto count = [&](const Edges& edges) { // per region
       std::vector<std::size_t> c(m, 0);
       for (const auto& e : edges)
@@ -285,8 +288,7 @@ private:
     std::vector<Eigen::Quaterniond> saved(tets.size());
     for (std::size_t k = 0; k < tets.size(); ++k) saved[k] = ff_.rotation_quaternion(tets[k]);
 
-    const int starts =
-        2 + (std::size_t(round_) < options_.restarts.size() ? std::max(0, options_.restarts[std::size_t(round_)]) : 0);
+    const int starts = 2 + (round < options_.restarts.size() ? std::max(0, options_.restarts[round]) : 0);
     for (int s = 0; s < starts; ++s) {
       std::vector<std::size_t> open, open_tets; // the regions still short of zero
       for (std::size_t r = 0; r < m; ++r)
@@ -294,7 +296,7 @@ private:
       if (open.empty()) break;
       for (std::size_t r : open) open_tets.insert(open_tets.end(), regions[batch[r]].begin(), regions[batch[r]].end());
       // Restart seeds differ between rounds, starts and batches (by their first tetrahedron).
-      const std::uint64_t seed = s < 2 ? 0 : split_seed(std::uint64_t(round_), std::uint64_t(s), tets.front());
+      const std::uint64_t seed = s < 2 ? 0 : split_seed(std::uint64_t(round), std::uint64_t(s), tets.front());
       ff_.reoptimize(open_tets, s == 1 ? Start::propagated : Start::relaxed, seed,
                      options_.restart_angle_deg * M_PI / 180);
       matchings_.update(ff_, open_tets);
@@ -308,18 +310,12 @@ private:
         }
       }
     }
-    // Each region's best frames, or its original ones.
-    for (std::size_t k = 0; k < tets.size(); ++k) {
-      const Best& b = best[std::size_t(label_[tets[k]])];
-      if (b.frames.empty()) ff_.set_rotation(tets[k], saved[k]);
-    }
-    for (std::size_t r = 0; r < m; ++r)
-      if (!best[r].frames.empty())
-        for (std::size_t k = 0; k < regions[batch[r]].size(); ++k)
-          ff_.set_rotation(regions[batch[r]][k], best[r].frames[k]);
+    // Each region's best frames, or its original ones (`tets` lists the regions in turn).
+    for (std::size_t r = 0, k = 0; r < m; ++r)
+      for (std::size_t j = 0; j < regions[batch[r]].size(); ++j, ++k)
+        ff_.set_rotation(tets[k], best[r].frames.empty() ? saved[k] : best[r].frames[j]);
     matchings_.update(ff_, tets);
     const Edges here = examine();
-    for (std::size_t i : tets) label_[i] = -1;
     if (here.size() >= old_here.size()) { // a curve's typing reaches past a region: undo
       for (std::size_t k = 0; k < tets.size(); ++k) ff_.set_rotation(tets[k], saved[k]);
       matchings_.update(ff_, tets);
@@ -351,11 +347,9 @@ private:
   Frame_field& ff_;
   const Singularity_repair_options& options_;
   Singularity_repair_report& report_;
-  int round_ = 0;
   Frame_field_matchings_3<Frame_field> matchings_;
   std::vector<std::size_t> first_, star_; // the tetrahedra around each vertex (compressed rows)
   std::vector<char> in_, reached_, inner_;
-  std::vector<std::int64_t> label_; // the region of the batch that holds a tetrahedron, or -1
   Edges bad_;
 };
 
@@ -407,7 +401,7 @@ Singularity_repair_report repair_singularities(Frame_field& ff, const Singularit
   for (int radius : options.radii) {
     if (repairer.non_meshable().empty()) break;
     ++report.rounds;
-    const auto [tried, kept] = repairer.round(radius);
+    const auto [tried, kept] = repairer.round(report.rounds - 1, radius);
     report.regions_tried += tried;
     report.regions_accepted += kept;
     if (options.progress) options.progress(int(report.rounds), radius, tried, kept, repairer.non_meshable().size());
