@@ -14,7 +14,7 @@
 // (feature_angle_deg = 180, the boundary rule before features, no repair:
 // "no features").
 //
-//   benchmark_frame_quality [size_fraction=F] [hex_fraction=H] [INPUT ...]
+//   benchmark_frame_quality [size_fraction=F] [hex_fraction=H] [hex_sizes=N] [INPUT ...]
 //
 // Hex columns: when the environment gives CubeCover's integer-grid tool and
 // HexEx's command-line tool, CGAL_EXT_INTEGERGRID=/path/to/integergrid and
@@ -25,7 +25,14 @@
 // and the hex mesh measured by scripts/hex_mesh_quality.py (python3): hexes,
 // scaled Jacobian min and median, hexes with a scaled Jacobian <= 0, and the
 // coverage (hex volume over tet volume). "MIP" marks a failed mixed-integer
-// solve of integergrid (it then writes zeros and exits 0).
+// solve of integergrid (it then writes zeros and exits 0). hex_sizes=N
+// (default 1) runs the pipeline on each field at N hex sizes spread evenly
+// over H times 0.97 to 1.03 (the same field, its gradients scaled): the
+// integer-grid map of a field with defects changes a lot with a 1% change of
+// size, so one run is one sample. The row then gives the median, least and
+// largest coverage and hex count, the least scaled Jacobian, the most
+// inverted hexes, and how many runs meet issue 15's target (every hex's
+// scaled Jacobian > 0, coverage >= 0.99).
 //
 // INPUT: builtin:NAME, a closed surface (.off .obj .stl .ply) meshed by
 // Mesh_3, or a tet mesh (.mesh, e.g. written by TetGen or Gmsh). Without
@@ -98,6 +105,15 @@ CGAL_ext::IO::Medit_mesh mesh_of(const std::string& input, double size_fraction)
                                          : CGAL_ext::tetrahedralize_surface(input, mo);
 }
 
+// One run of the hex pipeline.
+struct Hex_run {
+  std::string error; // empty if a hex mesh was measured
+  bool mip_failed = false;
+  std::size_t hexes = 0, inverted = 0;
+  double sj_min = 0, sj_median = 0, coverage = 0;
+  bool meets_target() const { return error.empty() && inverted == 0 && coverage >= 0.99; }
+};
+
 struct Quality {
   std::size_t tets = 0, singular = 0, plus = 0, minus = 0, non_meshable = 0, curves = 0, nodes = 0,
               interior_ends = 0;
@@ -111,18 +127,19 @@ struct Quality {
   // run along the surface (both vertices on the boundary).
   std::size_t singular_at_features = 0, singular_along_features = 0;
   double seconds_field = 0;
-  // The hex mesh of CubeCover and HexEx (hex columns only).
-  bool hex_run = false, mip_failed = false;
-  std::string hex_error;
-  std::size_t hexes = 0, hexes_inverted = 0;
-  double sj_min = 0, sj_median = 0, coverage = 0;
+  // The hex meshes of CubeCover and HexEx, one per hex size (hex columns only).
+  std::vector<Hex_run> hex_runs;
 };
 
 // The hex tools, if the environment names them.
 struct Hex_tools {
   std::string integergrid, hexex;
   double fraction = 1.0 / 15; // hex edge over the bounding-box diagonal
+  int sizes = 1;              // hex sizes per field, spread over fraction * [1 - spread, 1 + spread]
+  static constexpr double spread = 0.03;
   bool enabled() const { return !integergrid.empty() && !hexex.empty(); }
+  // The hex edge of run k of `sizes` for a field whose target edge is h.
+  double size(double h, int k) const { return sizes == 1 ? h : h * (1 + spread * (2.0 * k / (sizes - 1) - 1)); }
 };
 
 std::string slurp(const std::filesystem::path& p) {
@@ -146,14 +163,13 @@ std::string shell_quote(const std::string& s) {
 
 // Writes the field as generate does (hexes of edge h), runs integergrid and
 // HexEx, and measures the hexes.
-void hex_pipeline(const Hex_tools& tools, const CGAL_ext::IO::Medit_mesh& mesh, const Frames& ff, double h,
-                  Quality& q) {
+Hex_run hex_pipeline(const Hex_tools& tools, const CGAL_ext::IO::Medit_mesh& mesh, const Frames& ff, double h) {
   namespace fs = std::filesystem;
   static int counter = 0;
   const fs::path dir = fs::temp_directory_path() /
                        ("cgal_ext_hex_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
   fs::create_directories(dir);
-  q.hex_run = true;
+  Hex_run q;
   CGAL_ext::IO::Medit_mesh tets;
   tets.vertices = mesh.vertices;
   tets.tetrahedra = mesh.tetrahedra;
@@ -170,29 +186,30 @@ void hex_pipeline(const Hex_tools& tools, const CGAL_ext::IO::Medit_mesh& mesh, 
   auto path = [&](const char* name) { return shell_quote((dir / name).string()); };
   const std::string ig = shell_quote(tools.integergrid) + " " + path("mesh.mesh") + " " + path("frames.fra") + " " +
                          path("frames.perm") + " " + path("param.hexex") + " > " + path("integergrid.log") + " 2>&1";
-  if (std::system(ig.c_str()) != 0) q.hex_error = "integergrid failed";
+  if (std::system(ig.c_str()) != 0) q.error = "integergrid failed";
   q.mip_failed = slurp(dir / "integergrid.log").find("Problem with MIP solve") != std::string::npos;
   const std::string hx = shell_quote(tools.hexex) + " " + path("param.hexex") + " " + path("hex.ovm") + " > " +
                          path("hexex.log") + " 2>&1";
-  if (q.hex_error.empty() && std::system(hx.c_str()) != 0) q.hex_error = "hexex failed";
+  if (q.error.empty() && std::system(hx.c_str()) != 0) q.error = "hexex failed";
   const std::string qs = std::string("python3 ") + shell_quote(CGAL_EXT_HEX_QUALITY_SCRIPT) + " " + path("hex.ovm") +
                          " --tets " + path("mesh.mesh") + " --json > " + path("quality.json") + " 2> " +
                          path("quality.log");
-  if (q.hex_error.empty() && std::system(qs.c_str()) != 0) q.hex_error = "no hex mesh";
-  if (q.hex_error.empty()) {
+  if (q.error.empty() && std::system(qs.c_str()) != 0) q.error = "no hex mesh";
+  if (q.error.empty()) {
     const nlohmann::json j = nlohmann::json::parse(slurp(dir / "quality.json"), nullptr, /*allow_exceptions=*/false);
     const nlohmann::json& sj = j.is_object() ? j.value("scaled_jacobian", nlohmann::json::object()) : j;
-    if (!j.is_object() || !sj.is_object()) q.hex_error = "unreadable quality.json";
+    if (!j.is_object() || !sj.is_object()) q.error = "unreadable quality.json";
     else {
       q.hexes = std::size_t(json_number(j, "hexahedra"));
       q.sj_min = json_number(sj, "min");
       q.sj_median = json_number(sj, "median");
-      q.hexes_inverted = std::size_t(json_number(sj, "count_le_0"));
+      q.inverted = std::size_t(json_number(sj, "count_le_0"));
       q.coverage = json_number(j, "coverage");
     }
   }
-  if (q.hex_error.empty()) fs::remove_all(dir);
-  else q.hex_error += " (files in " + dir.string() + ")";
+  if (q.error.empty()) fs::remove_all(dir);
+  else q.error += " (files in " + dir.string() + ")";
+  return q;
 }
 
 // The measures of a computed field; `seconds`: the time it took (the time
@@ -257,7 +274,8 @@ Quality measure(const Tr& tr, const Field& field, const Frames& ff, double secon
     q.singular_at_features += at;
     q.singular_along_features += at && on_boundary[e.vertices[0]] && on_boundary[e.vertices[1]];
   }
-  if (tools.enabled()) hex_pipeline(tools, mesh, ff, h, q);
+  if (tools.enabled())
+    for (int k = 0; k < tools.sizes; ++k) q.hex_runs.push_back(hex_pipeline(tools, mesh, ff, tools.size(h, k)));
   return q;
 }
 
@@ -268,13 +286,45 @@ void print_row(const std::string& name, const char* variant, const Quality& q, d
               q.interior_ends, q.angle_mean, q.angle_median, q.energy_per_weight, q.align_mean, q.align_max,
               q.feature_edges, q.corners, q.tangent_error_mean, q.tangent_error_max, q.singular_at_features,
               q.singular_along_features, seconds_mesh, q.seconds_field);
-  if (!q.hex_run) return;
-  if (!q.hex_error.empty())
-    std::printf("%-22s %-11s   hex pipeline: %s\n", name.c_str(), variant, q.hex_error.c_str());
-  else
-    std::printf("%-22s %-11s   hexes %zu, scaled Jacobian min %.3f median %.3f, <= 0: %zu, coverage %.4f%s\n",
-                name.c_str(), variant, q.hexes, q.sj_min, q.sj_median, q.hexes_inverted, q.coverage,
-                q.mip_failed ? " (MIP)" : "");
+  if (q.hex_runs.size() == 1) {
+    const Hex_run& r = q.hex_runs[0];
+    if (!r.error.empty())
+      std::printf("%-22s %-11s   hex pipeline: %s\n", name.c_str(), variant, r.error.c_str());
+    else
+      std::printf("%-22s %-11s   hexes %zu, scaled Jacobian min %.3f median %.3f, <= 0: %zu, coverage %.4f%s\n",
+                  name.c_str(), variant, r.hexes, r.sj_min, r.sj_median, r.inverted, r.coverage,
+                  r.mip_failed ? " (MIP)" : "");
+  } else if (q.hex_runs.size() > 1) {
+    std::vector<double> coverage, hexes;
+    double sj_min = 1;
+    std::size_t inverted = 0, met = 0, mip = 0;
+    for (const Hex_run& r : q.hex_runs) {
+      mip += r.mip_failed;
+      if (!r.error.empty()) continue;
+      coverage.push_back(r.coverage);
+      hexes.push_back(double(r.hexes));
+      sj_min = std::min(sj_min, r.sj_min);
+      inverted = std::max(inverted, r.inverted);
+      met += r.meets_target();
+    }
+    const std::size_t n = q.hex_runs.size();
+    if (coverage.empty()) {
+      std::printf("%-22s %-11s   hex pipeline: no hex mesh at any of %zu sizes (first: %s)\n", name.c_str(), variant, n,
+                  q.hex_runs[0].error.c_str());
+      return;
+    }
+    auto median = [](std::vector<double> v) {
+      std::sort(v.begin(), v.end());
+      return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+    };
+    std::printf("%-22s %-11s   %zu sizes, %zu hex meshes: hexes %.0f (%.0f-%.0f), coverage %.4f (%.4f-%.4f), "
+                "scaled Jacobian min %.3f, most <= 0: %zu, target met %zu of %zu%s\n",
+                name.c_str(), variant, n, coverage.size(), median(hexes),
+                *std::min_element(hexes.begin(), hexes.end()), *std::max_element(hexes.begin(), hexes.end()),
+                median(coverage), *std::min_element(coverage.begin(), coverage.end()),
+                *std::max_element(coverage.begin(), coverage.end()), sj_min, inverted, met, n,
+                mip ? (" (" + std::to_string(mip) + " MIP)").c_str() : "");
+  }
 }
 
 // The three variants of one model: no repair, repaired (generate's output), no features.
@@ -325,8 +375,14 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "hex_fraction must be in (0, 1), got '%s'\n", arg.c_str() + 13);
         return 2;
       }
+    } else if (arg.rfind("hex_sizes=", 0) == 0) {
+      tools.sizes = std::atoi(arg.c_str() + 10);
+      if (!(tools.sizes >= 1 && tools.sizes <= 101)) {
+        std::fprintf(stderr, "hex_sizes must be in [1, 101], got '%s'\n", arg.c_str() + 10);
+        return 2;
+      }
     } else if (arg == "-h" || arg == "--help") {
-      std::printf("usage: benchmark_frame_quality [size_fraction=F] [hex_fraction=H] [INPUT ...]\n"
+      std::printf("usage: benchmark_frame_quality [size_fraction=F] [hex_fraction=H] [hex_sizes=N] [INPUT ...]\n"
                   "hex columns: set CGAL_EXT_INTEGERGRID and CGAL_EXT_HEXEX to the tools' paths\n"
                   "INPUT: builtin:NAME, a closed surface (.off .obj .stl .ply), or a tet mesh (.mesh)\n");
       return 0;
@@ -352,9 +408,11 @@ int main(int argc, char** argv) {
               tbb::info::default_concurrency());
   if (tools.enabled())
     std::printf("Hex meshes: CubeCover's integergrid (%s) and HexEx (%s), hexes of %.4g times the bounding-box\n"
-                "diagonal, measured by scripts/hex_mesh_quality.py (Verdict's scaled Jacobian; coverage: hex volume over\n"
-                "tet volume).\n",
-                tools.integergrid.c_str(), tools.hexex.c_str(), tools.fraction);
+                "diagonal (%d sizes from %.4g to %.4g times it: median (least-largest)), measured by\n"
+                "scripts/hex_mesh_quality.py (Verdict's scaled Jacobian; coverage: hex volume over tet volume; target:\n"
+                "every scaled Jacobian > 0 and coverage >= 0.99).\n",
+                tools.integergrid.c_str(), tools.hexex.c_str(), tools.fraction, tools.sizes, tools.size(1, 0),
+                tools.size(1, tools.sizes - 1));
   std::printf("\n");
   std::printf("%-22s %-11s %8s %6s %5s %5s %5s %6s %5s %6s %8s %8s %8s %7s %7s %6s %6s %7s %7s %5s %5s %7s %7s\n",
               "model", "variant", "tets", "sing", "+1/4", "-1/4", "nonm", "curves", "nodes", "in-end", "ang.mean",
