@@ -211,6 +211,56 @@ TEST_CASE("chamfered box: the frames follow the feature edges, and a crease's an
   CHECK(worst_right_angle_face < 1e-6); // faces at right-angled edges: exact
 }
 
+TEST_CASE("chamfered box: every tetrahedron along a 45-degree crease takes its shared angle, "
+          "unless crease_split_deg is above 45",
+          "[sharp_features][frame_field]") {
+  // Frames turn only about the chamfer's vertical edges there, and the
+  // faces' frames differ by 45 degrees about them: shared alike, each face
+  // of every tetrahedron along the crease is 22.5 degrees off; with the
+  // split off, a tetrahedron with faces on one side follows them exactly.
+  const auto m = mesh_surface(chamfered_box(), 0.12, 30);
+  const Field field(m->tr, Eigen::Matrix3d::Identity().eval());
+  const Features features(field, Frame_field_options().feature_angle_deg);
+  for (const double split : {Frame_field_options().crease_split_deg, 46.0}) {
+    Frame_field_options options;
+    options.crease_split_deg = split;
+    Frames ff(field);
+    ff.compute(options);
+    std::size_t one_side = 0, both_sides = 0;
+    for (std::size_t i = 0; i < ff.size(); ++i) {
+      const Tr::Cell_handle c = ff.cell(i);
+      bool at_corner = false, at_chamfer = false;
+      for (int a = 0; a < 4; ++a) {
+        at_corner = at_corner || features.kind(ff.vertex_index(c->vertex(a))) == Feature_vertex_kind::corner;
+        for (int b = a + 1; b < 4; ++b) {
+          const Eigen::Vector3d p = position(c->vertex(a)), t = position(c->vertex(b)) - p;
+          at_chamfer = at_chamfer || (features.is_feature_edge(ff.vertex_index(c->vertex(a)), ff.vertex_index(c->vertex(b))) &&
+                                      std::abs(p(0) + p(1) - 1.7) < 1e-9 && std::abs(t(2)) > 0.99 * t.norm());
+        }
+      }
+      if (at_corner || !at_chamfer) continue;
+      std::vector<const Frames::Boundary_face*> faces;
+      for (const auto& b : ff.boundary_faces())
+        if (b.tet == i) faces.push_back(&b);
+      if (faces.empty()) continue; // free about the tangent
+      bool same_side = true;
+      for (const auto* f : faces) same_side = same_side && f->normal.dot(faces[0]->normal) > 0.99;
+      (same_side ? one_side : both_sides) += 1;
+      for (const auto* f : faces) {
+        INFO("split " << split << ", tetrahedron " << i << (same_side ? " (one side)" : " (both sides)"));
+        CHECK(ff.alignment_error_deg(*f) == Approx(same_side && split > 45 ? 0.0 : 22.5).margin(1e-4));
+      }
+    }
+    CHECK(one_side >= 10);
+  }
+  for (const double bad : {-1.0, std::nan("")}) {
+    Frame_field_options options;
+    options.crease_split_deg = bad;
+    Frames ff(field);
+    CHECK_THROWS_AS(ff.compute(options), std::invalid_argument);
+  }
+}
+
 TEST_CASE("a tetrahedron with faces on both sides of a 45-degree crease shares its angle between them",
           "[sharp_features][frame_field]") {
   // The chamfered box as a prism mesh: the pentagon cut into the triangles

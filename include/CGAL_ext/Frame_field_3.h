@@ -82,6 +82,9 @@ namespace CGAL_ext {
 /// the tangent as far as it allows); if they lie on both sides of a crease,
 /// the frame takes the mean of their directions modulo a quarter turn, so
 /// that they share the crease's angle; without boundary faces it is free.
+/// On a crease whose faces' frames differ by at least
+/// `Frame_field_options::crease_split_deg` modulo a quarter turn (45-degree
+/// chamfers), a tetrahedron with faces on one side shares the angle too.
 ///
 /// **Method.** (1) Sparse linear initialisation: the quadratic energy plus
 /// the soft boundary terms, minimised over unconstrained 9-vectors by

@@ -39,6 +39,22 @@ struct Frame_field_options {
   /// which are dropped (doc/sharp_features.md). 180 turns feature detection
   /// off (except where parts of the domain meet along an edge).
   double feature_angle_deg = 40;
+  /// With `hard_boundary`: a crease (a feature edge between two boundary
+  /// facets) whose faces' frames differ, about its tangent, by at least this
+  /// many degrees modulo a quarter turn (folded into [0, 45]: 30 covers
+  /// creases of 30 to 60 degrees modulo 90, such as 45-degree chamfers) is
+  /// shared alike by all the tetrahedra along it: each takes the frame
+  /// midway between the faces' frames, even with its own boundary faces on
+  /// one side only (the faces are then off by half the difference). Below
+  /// it, such a tetrahedron follows its own face exactly. Why: on a
+  /// 45-degree chamfer the two faces' frames differ by 45 degrees, so the
+  /// matching between a tetrahedron that follows one face and a neighbour
+  /// that follows the other is a near tie between turning +45 and -45
+  /// degrees; where the choice flips along the crease, a singular curve runs
+  /// across its own axis (CGAL's anchor: 12 non-meshable edges after the
+  /// repair instead of 7; doc/benchmarks.md, "Creases shared alike"). Above
+  /// 45: never.
+  double crease_split_deg = 30;
   /// Tolerance in radians of each face transport `T(i->j)`.
   double transport_tolerance = 1e-6;
   /// The transport scheme.

@@ -101,6 +101,9 @@ public:
     std::size_t target; ///< the larger vertex index
     double angle_deg;   ///< the angle between the two facets' metric normals (180 if not two facets)
     int facets;         ///< the number of boundary facets on the edge (2 on a manifold boundary)
+    /// the outward Euclidean unit normals of its two boundary facets (that of
+    /// smaller sorted vertex indices first); zero if not two facets
+    std::array<Eigen::Vector3d, 2> normals = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   };
 
   /// Finds the features.
@@ -137,13 +140,18 @@ public:
   /// \param a a vertex index
   /// \param b a vertex index
   /// \returns true if `(a, b)` or `(b, a)` is a feature edge
-  bool is_feature_edge(std::size_t a, std::size_t b) const {
+  bool is_feature_edge(std::size_t a, std::size_t b) const { return feature_edge(a, b) != nullptr; }
+  /// The feature edge between two vertices.
+  /// \param a a vertex index
+  /// \param b a vertex index
+  /// \returns the feature edge `(min(a, b), max(a, b))`, or null if it is not one
+  const Feature_edge* feature_edge(std::size_t a, std::size_t b) const {
     if (a > b) std::swap(a, b);
     const auto it = std::lower_bound(edges_.begin(), edges_.end(), std::make_pair(a, b),
                                      [](const Feature_edge& e, const std::pair<std::size_t, std::size_t>& k) {
                                        return std::make_pair(e.source, e.target) < k;
                                      });
-    return it != edges_.end() && it->source == a && it->target == b;
+    return it != edges_.end() && it->source == a && it->target == b ? &*it : nullptr;
   }
   /// The tangent of the feature curve along the feature edge from `a` to
   /// `b` (Euclidean, unit, oriented from `a` to `b`): the mean of the curve's
@@ -234,6 +242,7 @@ private:
       Feature_edge e{a, b, 180, int(last - first)};
       bool feature = e.facets != 2;
       if (!feature) {
+        e.normals = {facets_[std::get<2>(edge_facet[first])].normal, facets_[std::get<2>(edge_facet[first + 1])].normal};
         // A is linear along the edge: its value at the midpoint is the mean.
         const Eigen::Matrix3d A_inv =
             scaled_inverse(0.5 * (field.sqrt_metric(vertices_[a]) + field.sqrt_metric(vertices_[b])));
