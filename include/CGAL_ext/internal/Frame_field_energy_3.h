@@ -445,6 +445,10 @@ private:
     // least `crease_split_deg` (modulo a quarter turn), a tetrahedron whose
     // faces agree takes the crease's shared angle too
     // (`Frame_field_options::crease_split_deg`).
+    // The signed angle from u to v about the tangent (both orthogonal to it).
+    auto angle = [&](const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+      return std::atan2(v.dot(C.d1.cross(u)), v.dot(u));
+    };
     Eigen::Vector3d p1 = Eigen::Vector3d::Zero();
     std::size_t face1 = 0; // the face p1 comes from
     bool agree = true;
@@ -455,8 +459,7 @@ private:
       if (p.norm() < 0.5) continue; // within 30 degrees of the tangent: says nothing about the rotation
       p.normalize();
       if (p1.isZero()) p1 = p, face1 = k;
-      const double theta = std::atan2(p.dot(C.d1.cross(p1)), p.dot(p1));
-      sum += std::polar(1.0, 4 * theta);
+      sum += std::polar(1.0, 4 * angle(p1, p));
       agree = agree && std::max(std::abs(p.dot(p1)), std::abs(p.dot(C.d1.cross(p1)))) >= cos_feature;
     }
     if (!p1.isZero() && agree && crease.size() == 2) {
@@ -467,7 +470,7 @@ private:
       for (int k = 0; k < 2; ++k) {
         pc[k] = crease[k] - crease[k].dot(C.d1) * C.d1;
         usable = usable && pc[k].norm() >= 0.5;
-        crease_sum += std::polar(1.0, 4 * std::atan2(pc[k].dot(C.d1.cross(p1)), pc[k].dot(p1)));
+        crease_sum += std::polar(1.0, 4 * angle(p1, pc[k]));
       }
       // The angle halfway between the faces' frames, from p1: their mean
       // modulo a quarter turn, as for a tetrahedron with faces on both sides
@@ -478,9 +481,8 @@ private:
       // between the normals is taken.
       double half = std::arg(crease_sum) / 4;
       if (std::abs(crease_sum) < 1e-9 && usable) {
-        const double theta = std::atan2(pc[1].dot(C.d1.cross(pc[0])), pc[1].dot(pc[0])); // from face 0 to face 1
-        const Eigen::Vector3d mid = Eigen::AngleAxisd(theta / 2, C.d1) * pc[0].normalized();
-        half = std::atan2(mid.dot(C.d1.cross(p1)), mid.dot(p1));
+        const Eigen::Vector3d mid = Eigen::AngleAxisd(angle(pc[0], pc[1]) / 2, C.d1) * pc[0].normalized();
+        half = angle(p1, mid);
       }
       if (usable && 2 * std::abs(half) * 180 / M_PI >= crease_split_deg) {
         C.d2 = Eigen::AngleAxisd(half, C.d1) * p1;
