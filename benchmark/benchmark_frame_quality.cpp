@@ -162,8 +162,9 @@ std::string shell_quote(const std::string& s) {
 }
 
 // Writes the field as generate does (hexes of edge h), runs integergrid and
-// HexEx, and measures the hexes.
-Hex_run hex_pipeline(const Hex_tools& tools, const CGAL_ext::IO::Medit_mesh& mesh, const Frames& ff, double h) {
+// HexEx, and measures the hexes. `matchings`: the field's, computed once for all sizes.
+Hex_run hex_pipeline(const Hex_tools& tools, const CGAL_ext::IO::Medit_mesh& mesh, const Frames& ff,
+                     const CGAL_ext::Frame_field_matchings_3<Frames>& matchings, double h) {
   namespace fs = std::filesystem;
   static int counter = 0;
   const fs::path dir = fs::temp_directory_path() /
@@ -182,7 +183,7 @@ Hex_run hex_pipeline(const Hex_tools& tools, const CGAL_ext::IO::Medit_mesh& mes
   }
   CGAL_ext::IO::write_fra((dir / "frames.fra").string(), gradients);
   CGAL_ext::IO::write_perm((dir / "frames.perm").string(),
-                           CGAL_ext::Frame_field_matchings_3<Frames>(ff).perm_file(ff));
+                           matchings.perm_file(ff));
   auto path = [&](const char* name) { return shell_quote((dir / name).string()); };
   const std::string ig = shell_quote(tools.integergrid) + " " + path("mesh.mesh") + " " + path("frames.fra") + " " +
                          path("frames.perm") + " " + path("param.hexex") + " > " + path("integergrid.log") + " 2>&1";
@@ -275,7 +276,7 @@ Quality measure(const Tr& tr, const Field& field, const Frames& ff, double secon
     q.singular_along_features += at && on_boundary[e.vertices[0]] && on_boundary[e.vertices[1]];
   }
   if (tools.enabled())
-    for (int k = 0; k < tools.sizes; ++k) q.hex_runs.push_back(hex_pipeline(tools, mesh, ff, tools.size(h, k)));
+    for (int k = 0; k < tools.sizes; ++k) q.hex_runs.push_back(hex_pipeline(tools, mesh, ff, matchings, tools.size(h, k)));
   return q;
 }
 
