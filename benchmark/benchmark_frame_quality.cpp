@@ -10,9 +10,11 @@
 // sharp features (the direction error of the feature edges, singular edges
 // at feature vertices). Side by side on the same mesh: generate's field
 // before the repair of non-meshable edges ("no repair", default options),
-// after it ("repaired", generate's output), and with feature detection off
-// (feature_angle_deg = 180, the boundary rule before features, no repair:
-// "no features").
+// after it ("repaired"), after it with the singular curves straightened
+// ("straightened", generate's output: the curves' interior vertices moved,
+// the curves typed and the hex pipeline run with the moved vertices), and
+// with feature detection off (feature_angle_deg = 180, the boundary rule
+// before features, no repair: "no features").
 //
 //   benchmark_frame_quality [size_fraction=F] [hex_fraction=H] [hex_sizes=N] [INPUT ...]
 //
@@ -45,6 +47,7 @@
 #include <CGAL_ext/Frame_field_matchings_3.h>
 #include <CGAL_ext/Frame_field_repair_3.h>
 #include <CGAL_ext/Frame_field_singularities_3.h>
+#include <CGAL_ext/Singular_curve_straightening_3.h>
 #include <CGAL_ext/IO/Fra_file.h>
 #include <CGAL_ext/IO/Medit_mesh.h>
 #include <CGAL_ext/IO/Perm_file.h>
@@ -164,7 +167,8 @@ std::string shell_quote(const std::string& s) {
 // Writes the field as generate does (hexes of edge h), runs integergrid and
 // HexEx, and measures the hexes. `matchings`: the field's, computed once for all sizes.
 Hex_run hex_pipeline(const Hex_tools& tools, const CGAL_ext::IO::Medit_mesh& mesh, const Frames& ff,
-                     const CGAL_ext::Frame_field_matchings_3<Frames>& matchings, double h) {
+                     const CGAL_ext::Frame_field_matchings_3<Frames>& matchings, double h,
+                     const std::vector<Eigen::Vector3d>* positions) {
   namespace fs = std::filesystem;
   static int counter = 0;
   const fs::path dir = fs::temp_directory_path() /
@@ -173,6 +177,9 @@ Hex_run hex_pipeline(const Hex_tools& tools, const CGAL_ext::IO::Medit_mesh& mes
   Hex_run q;
   CGAL_ext::IO::Medit_mesh tets;
   tets.vertices = mesh.vertices;
+  if (positions)
+    for (std::size_t v = 0; v < tets.vertices.size(); ++v)
+      for (int c = 0; c < 3; ++c) tets.vertices[v][std::size_t(c)] = (*positions)[v](c);
   tets.tetrahedra = mesh.tetrahedra;
   CGAL_ext::IO::write_medit_mesh((dir / "mesh.mesh").string(), tets);
   std::vector<std::array<double, 9>> gradients(ff.size());
@@ -214,15 +221,28 @@ Hex_run hex_pipeline(const Hex_tools& tools, const CGAL_ext::IO::Medit_mesh& mes
 }
 
 // The measures of a computed field; `seconds`: the time it took (the time
-// of the matchings and singular curves is added).
+// of the matchings and singular curves is added). With `straighten`, those
+// of generate's output: the curves straightened (their moved vertices kept
+// unless they give more non-meshable edges, as generate does).
 Quality measure(const Tr& tr, const Field& field, const Frames& ff, double seconds, const Hex_tools& tools,
-                const CGAL_ext::IO::Medit_mesh& mesh, double h) {
+                const CGAL_ext::IO::Medit_mesh& mesh, double h, bool straighten = false) {
   Quality q;
   const auto t = std::chrono::steady_clock::now();
   const CGAL_ext::Frame_field_statistics& st = ff.statistics();
   const CGAL_ext::Frame_field_matchings_3<Frames> matchings(ff);
-  const auto edges = CGAL_ext::singular_edges(ff, matchings);
-  const CGAL_ext::Singularity_graph graph = CGAL_ext::singularity_graph(ff, edges);
+  auto edges = CGAL_ext::singular_edges(ff, matchings);
+  std::vector<Eigen::Vector3d> positions;
+  if (straighten) {
+    auto count = [](const std::vector<CGAL_ext::Singular_edge>& e) {
+      return std::count_if(e.begin(), e.end(), [](const auto& s) { return !CGAL_ext::is_meshable(s.type); });
+    };
+    positions = CGAL_ext::straighten_singular_curves(ff, edges);
+    auto moved = CGAL_ext::singular_edges(ff, matchings, nullptr, &positions);
+    if (count(moved) <= count(edges)) edges.swap(moved);
+    else positions.clear();
+  }
+  const std::vector<Eigen::Vector3d>* moved = positions.empty() ? nullptr : &positions;
+  const CGAL_ext::Singularity_graph graph = CGAL_ext::singularity_graph(ff, edges, moved);
   q.seconds_field = seconds + since(t);
 
   q.tets = ff.size();
@@ -276,12 +296,12 @@ Quality measure(const Tr& tr, const Field& field, const Frames& ff, double secon
     q.singular_along_features += at && on_boundary[e.vertices[0]] && on_boundary[e.vertices[1]];
   }
   if (tools.enabled())
-    for (int k = 0; k < tools.sizes; ++k) q.hex_runs.push_back(hex_pipeline(tools, mesh, ff, matchings, tools.size(h, k)));
+    for (int k = 0; k < tools.sizes; ++k) q.hex_runs.push_back(hex_pipeline(tools, mesh, ff, matchings, tools.size(h, k), moved));
   return q;
 }
 
 void print_row(const std::string& name, const char* variant, const Quality& q, double seconds_mesh) {
-  std::printf("%-22s %-11s %8zu %6zu %5zu %5zu %5zu %6zu %5zu %6zu %8.3f %8.3f %8.4f %7.3f %7.2f %6zu %6zu %7.2f %7.2f "
+  std::printf("%-22s %-12s %8zu %6zu %5zu %5zu %5zu %6zu %5zu %6zu %8.3f %8.3f %8.4f %7.3f %7.2f %6zu %6zu %7.2f %7.2f "
               "%5zu %5zu %7.1f %7.1f\n",
               name.c_str(), variant, q.tets, q.singular, q.plus, q.minus, q.non_meshable, q.curves, q.nodes,
               q.interior_ends, q.angle_mean, q.angle_median, q.energy_per_weight, q.align_mean, q.align_max,
@@ -290,9 +310,9 @@ void print_row(const std::string& name, const char* variant, const Quality& q, d
   if (q.hex_runs.size() == 1) {
     const Hex_run& r = q.hex_runs[0];
     if (!r.error.empty())
-      std::printf("%-22s %-11s   hex pipeline: %s\n", name.c_str(), variant, r.error.c_str());
+      std::printf("%-22s %-12s   hex pipeline: %s\n", name.c_str(), variant, r.error.c_str());
     else
-      std::printf("%-22s %-11s   hexes %zu, scaled Jacobian min %.3f median %.3f, <= 0: %zu, coverage %.4f%s\n",
+      std::printf("%-22s %-12s   hexes %zu, scaled Jacobian min %.3f median %.3f, <= 0: %zu, coverage %.4f%s\n",
                   name.c_str(), variant, r.hexes, r.sj_min, r.sj_median, r.inverted, r.coverage,
                   r.mip_failed ? " (MIP)" : "");
   } else if (q.hex_runs.size() > 1) {
@@ -310,7 +330,7 @@ void print_row(const std::string& name, const char* variant, const Quality& q, d
     }
     const std::size_t n = q.hex_runs.size();
     if (coverage.empty()) {
-      std::printf("%-22s %-11s   hex pipeline: no hex mesh at any of %zu sizes (first: %s)\n", name.c_str(), variant, n,
+      std::printf("%-22s %-12s   hex pipeline: no hex mesh at any of %zu sizes (first: %s)\n", name.c_str(), variant, n,
                   q.hex_runs[0].error.c_str());
       return;
     }
@@ -318,7 +338,7 @@ void print_row(const std::string& name, const char* variant, const Quality& q, d
       std::sort(v.begin(), v.end());
       return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
     };
-    std::printf("%-22s %-11s   %zu sizes, %zu hex meshes: hexes %.0f (%.0f-%.0f), coverage %.4f (%.4f-%.4f), "
+    std::printf("%-22s %-12s   %zu sizes, %zu hex meshes: hexes %.0f (%.0f-%.0f), coverage %.4f (%.4f-%.4f), "
                 "scaled Jacobian min %.3f, most <= 0: %zu, target met %zu of %zu%s\n",
                 name.c_str(), variant, n, coverage.size(), median(hexes),
                 *std::min_element(hexes.begin(), hexes.end()), *std::max_element(hexes.begin(), hexes.end()),
@@ -328,7 +348,7 @@ void print_row(const std::string& name, const char* variant, const Quality& q, d
   }
 }
 
-// The three variants of one model: no repair, repaired (generate's output), no features.
+// The four variants of one model: no repair, repaired, straightened (generate's output), no features.
 void benchmark_model(const std::string& input, const std::string& name, double size_fraction, const Hex_tools& tools) {
   const auto t = std::chrono::steady_clock::now();
   const CGAL_ext::IO::Medit_mesh mesh = mesh_of(input, size_fraction);
@@ -345,7 +365,9 @@ void benchmark_model(const std::string& input, const std::string& name, double s
   print_row(name, "no repair", measure(tr, field, ff, seconds_compute, tools, mesh, h), seconds_mesh);
   t_field = std::chrono::steady_clock::now();
   CGAL_ext::repair_singularities(ff);
-  print_row(name, "repaired", measure(tr, field, ff, seconds_compute + since(t_field), tools, mesh, h), seconds_mesh);
+  const double seconds_repaired = seconds_compute + since(t_field);
+  print_row(name, "repaired", measure(tr, field, ff, seconds_repaired, tools, mesh, h), seconds_mesh);
+  print_row(name, "straightened", measure(tr, field, ff, seconds_repaired, tools, mesh, h, true), seconds_mesh);
   t_field = std::chrono::steady_clock::now();
   Frames plain(field);
   CGAL_ext::Frame_field_options options;
@@ -398,8 +420,9 @@ int main(int argc, char** argv) {
         inputs.push_back(std::string(dir) + "/" + model + ".off");
   }
   std::printf("Frame-field quality with generate's default options (identity metric, Frame_field_options()), %d threads,\n"
-              "before and after the repair of non-meshable edges (no repair, repaired: generate's output), and with\n"
-              "features off and no repair (no features), on the same mesh.\n"
+              "before and after the repair of non-meshable edges (no repair, repaired), after it with the singular\n"
+              "curves straightened (straightened: generate's output, typed and meshed with the moved vertices), and\n"
+              "with features off and no repair (no features), on the same mesh.\n"
               "Singular edges: all, +1/4, -1/4, non-meshable (neither quarter turn about the edge); curves, nodes, curves\n"
               "ending inside the volume; face angle between matched neighbouring frames (deg); energy per unit face\n"
               "weight; boundary alignment error (deg); feature edges and corners (at the default angle); angle between\n"
@@ -415,7 +438,7 @@ int main(int argc, char** argv) {
                 tools.integergrid.c_str(), tools.hexex.c_str(), tools.fraction, tools.sizes, tools.size(1, 0),
                 tools.size(1, tools.sizes - 1));
   std::printf("\n");
-  std::printf("%-22s %-11s %8s %6s %5s %5s %5s %6s %5s %6s %8s %8s %8s %7s %7s %6s %6s %7s %7s %5s %5s %7s %7s\n",
+  std::printf("%-22s %-12s %8s %6s %5s %5s %5s %6s %5s %6s %8s %8s %8s %7s %7s %6s %6s %7s %7s %5s %5s %7s %7s\n",
               "model", "variant", "tets", "sing", "+1/4", "-1/4", "nonm", "curves", "nodes", "in-end", "ang.mean",
               "ang.med", "E/w", "al.mean", "al.max", "f.edge", "corner", "tan.mean", "tan.max", "f.sing", "f.surf",
               "mesh s", "field s");

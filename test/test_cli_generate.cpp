@@ -6,9 +6,11 @@
 // rules, the report, thread-count independence, and clear errors for bad
 // input, with nothing overwritten; and the pipeline's library functions,
 // which write the same files.
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <catch2/catch.hpp>
 
 #include "cli_test_support.h"
+#include "test_support.h"
 #include "vtu_test_reader.h"
 
 #include <CGAL_ext/Frame_field_pipeline.h>
@@ -24,6 +26,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <set>
 #include <string>
 
 using namespace CGAL_ext::testing;
@@ -438,6 +441,61 @@ TEST_CASE("generate meshes a built-in shape with Mesh_3", "[cli][generate]") {
   }
 }
 
+TEST_CASE("generate straightens the singular curves: only their interior vertices move; --keep-vertices keeps all",
+          "[cli][generate][straightening]") {
+  const auto moved_out = work / "ball_straightened", kept_out = work / "ball_kept";
+  const Run a = run("generate builtin:ball --size 0.25 -o " + moved_out.string());
+  const Run b = run("generate builtin:ball --size 0.25 --keep-vertices -o " + kept_out.string());
+  INFO(a.err << b.err);
+  REQUIRE(a.exit_code == 0);
+  REQUIRE(b.exit_code == 0);
+  CHECK(a.err.find("[stage] straightening") != std::string::npos);
+  CHECK(b.err.find("[stage] straightening") == std::string::npos);
+  const nlohmann::json ra = read_report(moved_out), rb = read_report(kept_out);
+  CHECK(rb["straightening"].is_null());
+  REQUIRE(ra["straightening"].is_object());
+  CHECK(ra["straightening"]["kept"] == true);
+  const auto ma = CGAL_ext::IO::read_medit_mesh((moved_out / "mesh.mesh").string());
+  const auto mb = CGAL_ext::IO::read_medit_mesh((kept_out / "mesh.mesh").string());
+  REQUIRE(ma.tetrahedra == mb.tetrahedra);
+  REQUIRE(ma.vertices.size() == mb.vertices.size());
+  // The field is the same: its frames and matchings do not depend on where the interior vertices are.
+  CHECK(slurp(moved_out / "frames.fra") == slurp(kept_out / "frames.fra"));
+  CHECK(slurp(moved_out / "frames.perm") == slurp(kept_out / "frames.perm"));
+  CHECK(number(ra, "/smoothness_energy") == number(rb, "/smoothness_energy"));
+  CHECK(number(ra, "/straightening/non_meshable_before") == number(rb, "/singularities/non_meshable_edges"));
+  CHECK(number(ra, "/straightening/non_meshable_after") == number(ra, "/singularities/non_meshable_edges"));
+  CHECK(number(ra, "/singularities/non_meshable_edges") <= number(rb, "/singularities/non_meshable_edges"));
+
+  // The moved vertices: as many as reported, none on the boundary, each on a singular curve.
+  const std::vector<char> boundary = CGAL_ext::testing::boundary_vertices(mb.vertices.size(), mb.tetrahedra);
+  std::set<std::size_t> on_curves;
+  const auto kept_singularities = CGAL_ext::testing::read_vtu((kept_out / "singularities.vtu").string());
+  for (double v : kept_singularities.point_data.at("vertex_index").values) on_curves.insert(std::size_t(v) - 1);
+  std::size_t moved = 0;
+  for (std::size_t v = 0; v < ma.vertices.size(); ++v) {
+    if (ma.vertices[v] == mb.vertices[v]) continue;
+    ++moved;
+    CHECK(boundary[v] == 0);
+    CHECK(on_curves.count(v) == 1);
+  }
+  CHECK(moved > 0);
+  CHECK(number(ra, "/straightening/moved_vertices") == moved);
+  CHECK(number(ra, "/straightening/curve_vertices") >= moved);
+  // Every tetrahedron of the written mesh is still positive (exact predicate), as CubeCover and HexEx need.
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  auto point = [&](std::size_t v) { return K::Point_3(ma.vertices[v][0], ma.vertices[v][1], ma.vertices[v][2]); };
+  std::size_t positive = 0;
+  for (const auto& t : ma.tetrahedra)
+    positive += CGAL::orientation(point(t[0]), point(t[1]), point(t[2]), point(t[3])) == CGAL::POSITIVE;
+  CHECK(positive == ma.tetrahedra.size());
+  // singularities.vtu and frames.vtu show the moved vertices.
+  const auto vtu = CGAL_ext::testing::read_vtu((moved_out / "frames.vtu").string());
+  REQUIRE(vtu.points.values.size() == 3 * ma.vertices.size());
+  for (std::size_t v = 0; v < ma.vertices.size(); ++v)
+    for (int c = 0; c < 3; ++c) CHECK(vtu.points.values[3 * v + std::size_t(c)] == ma.vertices[v][std::size_t(c)]);
+}
+
 namespace {
 
 // The mesh of `file` with every coordinate multiplied by 2^e (exactly, for
@@ -579,7 +637,8 @@ TEST_CASE("the pipeline's library functions write the files of generate, bit for
   input.hex_size = 0.5;
   const CGAL_ext::Pipeline_metric metric = CGAL_ext::make_pipeline_metric(mesh, input);
   const CGAL_ext::Pipeline_frame_field frames =
-      CGAL_ext::generate_pipeline_frame_field(metric, context.options, CGAL_ext::Singularity_repair_options());
+      CGAL_ext::generate_pipeline_frame_field(metric, context.options, CGAL_ext::Singularity_repair_options(), {},
+                                              CGAL_ext::Singular_curve_straightening_options());
   CGAL_ext::write_pipeline_outputs(dir, mesh, frames);
   CGAL_ext::write_pipeline_report(dir, CGAL_ext::pipeline_report_json(mesh, metric, frames, context));
 

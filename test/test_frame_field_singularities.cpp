@@ -14,11 +14,14 @@
 #include <CGAL_ext/Frame_field_singularities_3.h>
 #include <CGAL_ext/IO/Perm_file.h>
 #include <CGAL_ext/Metric_field_3.h>
+#include <CGAL_ext/Singular_curve_straightening_3.h>
 #include <CGAL_ext/build_triangulation_from_tets.h>
 #include <CGAL_ext/tetrahedralize.h>
 
 #include "reference/degenerate_test_meshes.h"
+#include "test_support.h"
 
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <catch2/catch.hpp>
 #include <tbb/global_control.h>
 #include <unistd.h>
@@ -260,6 +263,91 @@ TEST_CASE("a singular line across the mesh: a zigzag curve of quarter turns, typ
     CHECK(g.boundary_ends == 2);
     CHECK(g.junctions + g.interior_ends == 0);
   }
+}
+
+TEST_CASE("straightening moves only the curves' interior vertices, turns no tetrahedron over and keeps the holonomies",
+          "[singularities][straightening]") {
+  // The zigzag curve of the test above: a quarter turn about the slanted line L.
+  const Eigen::Vector3d p0(2.9, 3.2, 0), dir = Eigen::Vector3d(0.25, 0.15, 1).normalized();
+  const Eigen::Vector3d u = dir.cross(Eigen::Vector3d::UnitX()).normalized(), v = dir.cross(u);
+  const Eigen::Matrix3d Q0 = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), dir).toRotationMatrix();
+  const auto s = field_on(testing::kuhn_grid(6, 6, 4, 1.0), [&](const Eigen::Vector3d& c) {
+    const Eigen::Vector3d w = c - p0;
+    return Eigen::Matrix3d(Eigen::AngleAxisd(std::atan2(w.dot(v), w.dot(u)) / 4, dir).toRotationMatrix() * Q0);
+  });
+  const Frame_field_matchings_3<Frames> matchings(*s->ff);
+  const auto sing = singular_edges(*s->ff, matchings);
+  REQUIRE(sing.size() > 4);
+  const std::size_t n = s->m.points.size();
+  std::vector<Eigen::Vector3d> mesh(n);
+  for (std::size_t i = 0; i < n; ++i) mesh[i] = Eigen::Vector3d(s->m.points[i][0], s->m.points[i][1], s->m.points[i][2]);
+
+  // The vertices allowed to move, found here from the tets' facets: two singular edges, not on the boundary.
+  const std::vector<char> boundary = testing::boundary_vertices(n, s->m.tets);
+  std::vector<int> degree(n, 0);
+  for (const Singular_edge& e : sing) ++degree[e.vertices[0]], ++degree[e.vertices[1]];
+  std::size_t movable = 0;
+  for (std::size_t i = 0; i < n; ++i) movable += degree[i] == 2 && !boundary[i];
+
+  // The distance of the curve's vertices from L, and each tetrahedron's orientation, decided exactly.
+  auto off_line = [&](const std::vector<Eigen::Vector3d>& p) {
+    double sum = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (degree[i] > 0) sum += ((p[i] - p0) - (p[i] - p0).dot(dir) * dir).norm();
+    return sum;
+  };
+  auto all_positive = [&](const std::vector<Eigen::Vector3d>& p) {
+    using Exact = CGAL::Exact_predicates_exact_constructions_kernel;
+    auto point = [&](std::size_t i) { return Exact::Point_3(p[i](0), p[i](1), p[i](2)); };
+    for (const auto& t : s->m.tets)
+      if (CGAL::orientation(point(t[0]), point(t[1]), point(t[2]), point(t[3])) != CGAL::POSITIVE) return false;
+    return true;
+  };
+  REQUIRE(all_positive(mesh));
+
+  for (const auto& [sweeps, step] : {std::pair<int, double>{5, 0.5}, {40, 1.0}}) {
+    INFO(sweeps << " sweeps, step " << step);
+    Singular_curve_straightening_options options;
+    options.sweeps = sweeps;
+    options.step = step;
+    Singular_curve_straightening_report report;
+    const std::vector<Eigen::Vector3d> p = straighten_singular_curves(*s->ff, sing, options, &report);
+    REQUIRE(p.size() == n);
+    CHECK(report.curve_vertices == movable);
+    CHECK(report.moved_vertices > 0);
+    CHECK(report.moved_vertices <= movable);
+    CHECK(report.max_relative_displacement > 0);
+    std::size_t moved = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (degree[i] == 2 && !boundary[i]) moved += p[i] != mesh[i];
+      else CHECK(p[i] == mesh[i]); // nodes, boundary and other vertices stay, bit for bit
+    }
+    CHECK(moved == report.moved_vertices);
+    CHECK(all_positive(p));
+    CHECK(off_line(p) < 0.8 * off_line(mesh));
+    // The holonomies stay; the curve, typed with the moved vertices, is still one quarter turn about itself.
+    const auto again = singular_edges(*s->ff, matchings, nullptr, &p);
+    REQUIRE(again.size() == sing.size());
+    for (std::size_t k = 0; k < sing.size(); ++k) {
+      CHECK(again[k].vertices == sing[k].vertices);
+      CHECK(again[k].type == Singularity_type::plus_quarter);
+      CHECK((again[k].midpoint - 0.5 * (p[sing[k].vertices[0]] + p[sing[k].vertices[1]])).norm() == 0);
+    }
+    const Singularity_graph g = singularity_graph(*s->ff, again, &p);
+    REQUIRE(g.curves.size() == 1);
+    CHECK(g.curves[0].length < singularity_graph(*s->ff, sing).curves[0].length); // straighter, hence shorter
+    CHECK(straighten_singular_curves(*s->ff, sing, options) == p); // deterministic
+  }
+  Singular_curve_straightening_options none;
+  none.sweeps = 0;
+  CHECK(straighten_singular_curves(*s->ff, sing, none) == mesh);
+  for (double bad : {0.0, -0.5, 1.5, std::nan("")}) {
+    Singular_curve_straightening_options o;
+    o.step = bad;
+    CHECK_THROWS_AS(straighten_singular_curves(*s->ff, sing, o), std::invalid_argument);
+  }
+  none.sweeps = -1;
+  CHECK_THROWS_AS(straighten_singular_curves(*s->ff, sing, none), std::invalid_argument);
 }
 
 TEST_CASE("non-meshable holonomies are flagged where they are", "[singularities]") {

@@ -1,8 +1,8 @@
 // Copyright (c) 2026 CGAL Metric Frames contributors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
-// Shared by the numerical tests: seeded random matrices, and the analytic
-// flat metric of doc/math.md section 6.
+// Shared by the numerical tests: seeded random matrices, the analytic flat
+// metric of doc/math.md section 6, and the boundary vertices of a tet list.
 #ifndef CGAL_EXT_TEST_SUPPORT_H
 #define CGAL_EXT_TEST_SUPPORT_H
 
@@ -12,9 +12,12 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <random>
+#include <vector>
 
 namespace CGAL_ext {
 namespace testing {
@@ -97,6 +100,25 @@ inline M3 curl(const V3& x) {
 inline M3 polar_rotation(const V3& x) { return jacobian(x) * sqrt_metric(x).inverse(); }
 
 } // namespace flat_metric
+/// The vertices of the facets that only one tetrahedron of `tets` has (1)
+/// and the others (0), found from the tets alone.
+inline std::vector<char> boundary_vertices(std::size_t vertices, const std::vector<std::array<std::size_t, 4>>& tets) {
+  std::map<std::array<std::size_t, 3>, int> facets;
+  for (const auto& t : tets)
+    for (std::size_t k = 0; k < 4; ++k) {
+      std::array<std::size_t, 3> f;
+      for (std::size_t i = 0, j = 0; i < 4; ++i)
+        if (i != k) f[j++] = t[i];
+      std::sort(f.begin(), f.end());
+      ++facets[f];
+    }
+  std::vector<char> boundary(vertices, 0);
+  for (const auto& [f, count] : facets)
+    if (count == 1)
+      for (std::size_t v : f) boundary[v] = 1;
+  return boundary;
+}
+
 } // namespace testing
 } // namespace CGAL_ext
 

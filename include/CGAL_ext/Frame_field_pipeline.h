@@ -16,6 +16,7 @@
 #include <CGAL_ext/Frame_field_options.h>
 #include <CGAL_ext/Frame_field_repair_3.h>
 #include <CGAL_ext/Frame_field_singularities_3.h>
+#include <CGAL_ext/Singular_curve_straightening_3.h>
 #include <CGAL_ext/IO/Medit_mesh.h>
 #include <CGAL_ext/Metric_field_3.h>
 #include <CGAL_ext/Tet_mesh_triangulation_3.h>
@@ -172,22 +173,38 @@ struct Pipeline_frame_field {
   Face_angle_statistics face_angles;
   /// The number of non-meshable singular edges.
   std::size_t non_meshable_edges = 0;
+  /// The straightening of the singular curves, if it was run.
+  std::optional<Singular_curve_straightening_report> straightening;
+  /// The non-meshable singular edges with the mesh's own positions (before
+  /// the straightening).
+  std::size_t non_meshable_edges_unstraightened = 0;
+  /// The positions of the vertices, by index, that the outputs use: the
+  /// straightened ones, or empty for the mesh's own (no straightening, none
+  /// moved, or more non-meshable edges with them).
+  std::vector<Eigen::Vector3d> positions;
 };
 
 /// \ingroup PkgCGALExtPipeline
 /// Generates the frame field in `metric` (`Frame_field_3::compute()`),
 /// repairs its non-meshable singular edges (`repair_singularities()`) if
 /// `repair` is set, and finds its matchings, singular edges and their graph.
+/// Then, if `straightening` is set, straightens the singular curves
+/// (`straighten_singular_curves()`) and types their edges again with the
+/// moved vertices; the moved positions are kept unless they give more
+/// non-meshable edges than the mesh's own.
 ///
 /// \param metric the metric field; it must outlive the result
 /// \param options the frame field's options; their `progress` reports the
 ///   frame field's stages
 /// \param repair the repair's options, or none for no repair
-/// \param stage if set, called after the stages `repair` and `singularities`
+/// \param stage if set, called after the stages `repair`, `singularities`
+///   and `straightening`
+/// \param straightening the straightening's options, or none for none
 /// \returns the frame field, its repair report, matchings and singularities
-Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric, const Frame_field_options& options,
-                                                   const std::optional<Singularity_repair_options>& repair,
-                                                   const Pipeline_stage_callback& stage = {});
+Pipeline_frame_field generate_pipeline_frame_field(
+    const Pipeline_metric& metric, const Frame_field_options& options,
+    const std::optional<Singularity_repair_options>& repair, const Pipeline_stage_callback& stage = {},
+    const std::optional<Singular_curve_straightening_options>& straightening = std::nullopt);
 
 /// \ingroup PkgCGALExtPipeline
 /// The names of the files that `write_pipeline_outputs()` and

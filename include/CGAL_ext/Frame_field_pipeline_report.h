@@ -80,13 +80,26 @@ inline nlohmann::ordered_json pipeline_repair_json(const std::optional<Singulari
           {"energy_after", fix->energy_after}};
 }
 
+// The "straightening" object, or null if it was not run.
+inline nlohmann::ordered_json pipeline_straightening_json(const Pipeline_frame_field& frames) {
+  if (!frames.straightening) return nullptr;
+  const Singular_curve_straightening_report& s = *frames.straightening;
+  return {{"curve_vertices", s.curve_vertices},
+          {"moved_vertices", s.moved_vertices},
+          {"refused_moves", s.refused_moves},
+          {"max_relative_displacement", s.max_relative_displacement},
+          {"kept", !frames.positions.empty()},
+          {"non_meshable_before", frames.non_meshable_edges_unstraightened},
+          {"non_meshable_after", frames.non_meshable_edges}};
+}
+
 } // namespace internal
 
 /// \ingroup PkgCGALExtPipeline
 /// The report of `report.json` (format in `output_files.md`) as a JSON value
 /// whose keys keep their documented order: counts, hex size, expected hexes,
 /// singular curves and nodes, non-meshable edges, energies, face angles,
-/// alignment, repair and timings. Numbers are written by nlohmann-json, in
+/// alignment, repair, straightening and timings. Numbers are written by nlohmann-json, in
 /// the shortest form that reads back as the same double; a number that is
 /// not finite is `null`. Header-only: it needs nlohmann-json.
 ///
@@ -130,6 +143,7 @@ inline nlohmann::ordered_json pipeline_report(const Pipeline_tet_mesh& mesh, con
         {"corners", st.feature_corners},
         {"tets", st.feature_tets}}},
       {"repair", internal::pipeline_repair_json(frames.repair)},
+      {"straightening", internal::pipeline_straightening_json(frames)},
       {"max_transport_angle_deg", st.max_transport_angle * 180 / M_PI},
       {"linear_iterations", st.linear_iterations},
       {"linear_residual", st.linear_residual},

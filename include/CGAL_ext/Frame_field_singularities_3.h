@@ -203,10 +203,15 @@ constexpr int singular_curve_direction_span = 2;
 ///        among them): an edge whose curve stays within
 ///        `singular_curve_direction_span` edges of the set gets the same type
 ///        as from all edges
+/// \param positions if given, the vertices' positions by vertex index, in
+///        place of the mesh's (as `straighten_singular_curves()` returns
+///        them): the holonomies stay, the curves' directions are those of
+///        these positions
 /// \returns the singular edges (regular edges are not listed)
 template <class Frame_field>
 std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_field_matchings_3<Frame_field>& matchings,
-                                          const std::vector<std::size_t>* tets = nullptr) {
+                                          const std::vector<std::size_t>* tets = nullptr,
+                                          const std::vector<Eigen::Vector3d>* positions = nullptr) {
   using Cell_handle = typename Frame_field::Cell_handle;
   using Edge = typename Frame_field::Triangulation::Edge;
   const auto& field = ff.metric_field();
@@ -258,12 +263,18 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_fie
                 loop.end());
     auto u = e.first->vertex(e.second), v = e.first->vertex(e.third);
     if (ff.vertex_index(u) > ff.vertex_index(v)) std::swap(u, v);
-    const Eigen::Vector3d pu = internal::to_eigen_vector(u->point()), pv = internal::to_eigen_vector(v->point());
+    auto vertex_position = [&](typename Frame_field::Vertex_handle w) -> Eigen::Vector3d {
+      return positions ? (*positions)[ff.vertex_index(w)] : internal::to_eigen_vector(w->point());
+    };
+    auto centroid = [&](Cell_handle c) -> Eigen::Vector3d {
+      if (!positions) return ff.centroid(std::size_t(ff.index(c)));
+      return 0.25 * (vertex_position(c->vertex(0)) + vertex_position(c->vertex(1)) + vertex_position(c->vertex(2)) +
+                     vertex_position(c->vertex(3)));
+    };
+    const Eigen::Vector3d pu = vertex_position(u), pv = vertex_position(v);
     double turn = 0; // orientation of the circulation about u -> v
-    for (int k = 0; k < n; ++k) {
-      const std::size_t ia = std::size_t(ff.index(loop[k])), ib = std::size_t(ff.index(loop[(k + 1) % n]));
-      turn += (ff.centroid(ia) - pu).cross(ff.centroid(ib) - pu).dot(pv - pu);
-    }
+    for (int k = 0; k < n; ++k)
+      turn += (centroid(loop[k]) - pu).cross(centroid(loop[(k + 1) % n]) - pu).dot(pv - pu);
     if (turn < 0) std::reverse(loop.begin() + 1, loop.end());
     const Eigen::Matrix3d P = loop_product();
     const int monodromy = octahedral_group_index(P, 0);
@@ -272,7 +283,9 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_fie
     f.P = P;
     f.t = pv - pu;
     const Eigen::Vector3d mid = 0.5 * (pu + pv);
-    const Eigen::Matrix3d A = field.A_at(loop[0], typename Frame_field::Point_3(mid(0), mid(1), mid(2)));
+    // A at the edge's midpoint is the mean of its ends' in any geometry: taken at the mesh's own midpoint.
+    const Eigen::Vector3d mesh_mid = 0.5 * (internal::to_eigen_vector(u->point()) + internal::to_eigen_vector(v->point()));
+    const Eigen::Matrix3d A = field.A_at(loop[0], typename Frame_field::Point_3(mesh_mid(0), mesh_mid(1), mesh_mid(2)));
     const Eigen::Matrix3d& R0 = matchings.rotation(std::size_t(ff.index(loop[0])));
     f.frame_from_metric = R0.transpose() * A;
     Singular_edge& s = f.edge;
@@ -463,9 +476,12 @@ struct Singularity_graph {
 ///         (which find its boundary faces)
 /// \param ff the frame field (for the boundary and the positions)
 /// \param edges its singular edges, as `singular_edges()` returns them
+/// \param positions if given, the vertices' positions by vertex index, in
+///        place of the mesh's (for the curves' lengths and the nodes' positions)
 /// \returns the curves, the nodes and their counts
 template <class Frame_field>
-Singularity_graph singularity_graph(const Frame_field& ff, const std::vector<Singular_edge>& edges) {
+Singularity_graph singularity_graph(const Frame_field& ff, const std::vector<Singular_edge>& edges,
+                                    const std::vector<Eigen::Vector3d>* positions = nullptr) {
   using Vertex_handle = typename Frame_field::Vertex_handle;
   std::vector<std::array<std::size_t, 2>> ends(edges.size());
   for (std::size_t k = 0; k < edges.size(); ++k) ends[k] = edges[k].vertices;
@@ -483,7 +499,8 @@ Singularity_graph singularity_graph(const Frame_field& ff, const std::vector<Sin
     for (int k = 0; k < 4; ++k) {
       const Vertex_handle v = ff.cell(i)->vertex(k);
       const std::size_t j = ff.vertex_index(v);
-      if (incident.count(j) && !position.count(j)) position[j] = internal::to_eigen_vector(v->point());
+      if (incident.count(j) && !position.count(j))
+        position[j] = positions ? (*positions)[j] : internal::to_eigen_vector(v->point());
     }
   auto other = [&](std::size_t k, std::size_t v) { return edges[k].vertices[0] == v ? edges[k].vertices[1] : edges[k].vertices[0]; };
 

@@ -152,7 +152,10 @@ int run_generate(const Generate_request& r) {
                    round, radius, tried, accepted, left);
     };
   }
-  const Pipeline_frame_field frames = generate_pipeline_frame_field(field, plan.options, repair_options, stage);
+  std::optional<Singular_curve_straightening_options> straightening;
+  if (!r.keep_vertices) straightening.emplace();
+  const Pipeline_frame_field frames =
+      generate_pipeline_frame_field(field, plan.options, repair_options, stage, straightening);
 
   CGAL::Real_timer write_timer;
   write_timer.start();

@@ -317,6 +317,9 @@ CLI::App* add_generate(CLI::App& app, Generate_request& r) {
       ->transform(whole_number(0, 1e6))
       ->excludes(no_repair)
       ->capture_default_str();
+  sub.add_flag("--keep-vertices", r.keep_vertices,
+               "write the mesh's vertices where they are (default: move the singular curves' interior vertices "
+               "towards straight curves, which an integer-grid map meshes with fewer inverted hexes)");
   sub.add_option("--max-iterations", r.options.max_refinement_iterations, "L-BFGS iterations at most")
       ->type_name("N")
       ->transform(whole_number(0, 1e8))

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <stdexcept>
@@ -196,7 +197,8 @@ Pipeline_metric make_pipeline_metric(const Pipeline_tet_mesh& mesh, const Pipeli
 
 Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric, const Frame_field_options& options,
                                                    const std::optional<Singularity_repair_options>& repair,
-                                                   const Pipeline_stage_callback& stage) {
+                                                   const Pipeline_stage_callback& stage,
+                                                   const std::optional<Singular_curve_straightening_options>& straightening) {
   Pipeline_frame_field r;
   r.frames = std::make_unique<Pipeline_frame_field_3>(*metric.field);
   Pipeline_frame_field_3& ff = *r.frames;
@@ -214,11 +216,37 @@ Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric
   r.matchings = std::make_unique<Pipeline_matchings_3>(ff);
   r.singular_edges = singular_edges(ff, *r.matchings);
   r.face_angles = r.matchings->face_angle_statistics(ff);
+  auto non_meshable = [](const std::vector<Singular_edge>& edges) {
+    return std::size_t(std::count_if(edges.begin(), edges.end(), [](const Singular_edge& s) { return !is_meshable(s.type); }));
+  };
+  r.non_meshable_edges = r.non_meshable_edges_unstraightened = non_meshable(r.singular_edges);
   r.graph = singularity_graph(ff, r.singular_edges);
-  for (const Singular_edge& s : r.singular_edges) r.non_meshable_edges += !is_meshable(s.type);
   clock("singularities", std::to_string(r.singular_edges.size()) + " singular edges in " +
                              std::to_string(r.graph.curves.size()) + " curves, " + std::to_string(r.graph.nodes.size()) +
                              " nodes; " + std::to_string(r.non_meshable_edges) + " non-meshable edges");
+  if (straightening) {
+    Singular_curve_straightening_report report;
+    std::vector<Eigen::Vector3d> moved = straighten_singular_curves(ff, r.singular_edges, *straightening, &report);
+    std::vector<Singular_edge> edges = singular_edges(ff, *r.matchings, nullptr, &moved);
+    const std::size_t bad = non_meshable(edges);
+    const bool keep = report.moved_vertices > 0 && bad <= r.non_meshable_edges;
+    if (keep) {
+      r.positions = std::move(moved);
+      r.singular_edges = std::move(edges);
+      r.non_meshable_edges = bad;
+      r.graph = singularity_graph(ff, r.singular_edges, &r.positions);
+    }
+    r.straightening = report;
+    char moves[120];
+    std::snprintf(moves, sizeof moves, "%zu of %zu curve vertices moved (at most %.3g of their edges' length); ",
+                  report.moved_vertices, report.curve_vertices, report.max_relative_displacement);
+    const std::string before = std::to_string(r.non_meshable_edges_unstraightened), after = std::to_string(bad);
+    const std::string detail = moves + (report.moved_vertices == 0 ? "nothing changed"
+                                        : keep ? before + " -> " + after + " non-meshable edges"
+                                               : after + " non-meshable edges instead of " + before +
+                                                     ": the mesh's positions kept");
+    clock("straightening", detail);
+  }
   return r;
 }
 

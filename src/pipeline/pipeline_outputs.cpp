@@ -149,8 +149,17 @@ void write_pipeline_outputs(const std::string& directory, const Pipeline_tet_mes
   std::filesystem::create_directories(directory, ec);
   if (ec) throw std::runtime_error(directory + ": cannot create the output directory: " + ec.message());
   const std::filesystem::path dir(directory);
-  write_frame_files(dir, mesh.mesh, *frames.frames, *frames.matchings);
-  write_singularities_vtu((dir / "singularities.vtu").string(), mesh.mesh, frames.singular_edges, frames.graph);
+  // With straightened curves, every file shows the moved vertices (the
+  // metric's tensors stay with their vertices).
+  std::optional<IO::Medit_mesh> moved;
+  if (!frames.positions.empty()) {
+    moved = mesh.mesh;
+    for (std::size_t v = 0; v < moved->vertices.size(); ++v)
+      for (int c = 0; c < 3; ++c) moved->vertices[v][std::size_t(c)] = frames.positions.at(v)(c);
+  }
+  const IO::Medit_mesh& written = moved ? *moved : mesh.mesh;
+  write_frame_files(dir, written, *frames.frames, *frames.matchings);
+  write_singularities_vtu((dir / "singularities.vtu").string(), written, frames.singular_edges, frames.graph);
 }
 
 std::string write_pipeline_report(const std::string& directory, const std::string& json) {

@@ -1,0 +1,174 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_EXT_SINGULAR_CURVE_STRAIGHTENING_3_H
+#define CGAL_EXT_SINGULAR_CURVE_STRAIGHTENING_3_H
+
+/// \file Singular_curve_straightening_3.h
+/// Moves the interior vertices of a frame field's singular curves so that
+/// the curves zigzag less: an integer-grid map lays every curve on a straight
+/// grid line, and the tetrahedra along a zigzag must shear to follow it.
+
+#include <CGAL_ext/Frame_field_singularities_3.h>
+
+#include <CGAL/Real_timer.h>
+#include <CGAL/enum.h>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <stdexcept>
+#include <vector>
+
+namespace CGAL_ext {
+
+/// \ingroup PkgCGALExtFrames
+/// Options of `straighten_singular_curves()`.
+struct Singular_curve_straightening_options {
+  /// Sweeps over the curves' vertices, in increasing vertex order.
+  int sweeps = 5;
+  /// The fraction of the way to the midpoint of its two curve neighbours
+  /// that a vertex moves in one sweep (halved, then halved again, where a
+  /// tetrahedron would turn over; the vertex stays where both fail).
+  double step = 0.5;
+};
+
+/// \ingroup PkgCGALExtFrames
+/// What `straighten_singular_curves()` did.
+struct Singular_curve_straightening_report {
+  /// Interior vertices with exactly two singular edges: those that may move.
+  std::size_t curve_vertices = 0;
+  /// Of them, those moved at least once.
+  std::size_t moved_vertices = 0;
+  /// Moves refused because a tetrahedron would have turned over.
+  std::size_t refused_moves = 0;
+  /// The largest displacement of a vertex, over the mean length of its two
+  /// curve edges before.
+  double max_relative_displacement = 0;
+  /// Duration in seconds.
+  double seconds = 0;
+};
+
+/// \ingroup PkgCGALExtFrames
+/// Straightens the singular curves of a frame field by moving their interior
+/// vertices: each vertex with exactly two singular edges and not on the
+/// domain's boundary moves, in `options.sweeps` Gauss-Seidel sweeps in
+/// increasing vertex order, `options.step` of the way towards the midpoint
+/// of its two curve neighbours. A move is refused where a tetrahedron around
+/// the vertex would change its orientation, decided by CGAL's exact
+/// `orientation()` predicate on the rounded candidate point; the step is
+/// then halved twice before the vertex stays. Nodes (ends and junctions),
+/// boundary vertices and all other vertices stay, so the boundary, its
+/// features and the mesh's connectivity are unchanged.
+///
+/// The field itself (its frames and matchings) does not depend on where the
+/// interior vertices are; the directions of the curves do, hence their types
+/// (`singular_edges()` with these positions). Deterministic: sequential,
+/// in vertex order.
+///
+/// \tparam Frame_field a `Frame_field_3` after `compute()` or `set_rotations()`
+/// \param ff the frame field (for the mesh, its boundary and its positions)
+/// \param edges its singular edges, as `singular_edges()` returns them
+/// \param options the options
+/// \param report if not null, receives what was done
+/// \returns the positions of all vertices, by vertex index (those of the
+///          mesh where nothing moved)
+/// \throws std::invalid_argument for `sweeps` < 0 or a `step` outside (0, 1]
+template <class Frame_field>
+std::vector<Eigen::Vector3d> straighten_singular_curves(const Frame_field& ff, const std::vector<Singular_edge>& edges,
+                                                        const Singular_curve_straightening_options& options = {},
+                                                        Singular_curve_straightening_report* report = nullptr) {
+  using Point_3 = typename Frame_field::Point_3;
+  if (options.sweeps < 0) throw std::invalid_argument("straighten_singular_curves: sweeps must be >= 0");
+  if (!(options.step > 0 && options.step <= 1))
+    throw std::invalid_argument("straighten_singular_curves: step must be in (0, 1]");
+  CGAL::Real_timer timer;
+  timer.start();
+  Singular_curve_straightening_report r;
+  const auto& tr = ff.metric_field().triangulation();
+  std::vector<Eigen::Vector3d> p(tr.number_of_vertices(), Eigen::Vector3d::Zero());
+  for (auto v = tr.finite_vertices_begin(); v != tr.finite_vertices_end(); ++v)
+    p.at(ff.vertex_index(v)) = internal::to_eigen_vector(v->point());
+  const std::size_t n = p.size(), m = ff.size();
+
+  // The tetrahedra around each vertex (compressed rows) and their vertices.
+  std::vector<std::array<std::size_t, 4>> tet(m);
+  std::vector<std::size_t> first(n + 1, 0), star(4 * m);
+  for (std::size_t i = 0; i < m; ++i)
+    for (int k = 0; k < 4; ++k) {
+      tet[i][k] = ff.vertex_index(ff.cell(i)->vertex(k));
+      ++first[tet[i][k] + 1];
+    }
+  for (std::size_t v = 0; v < n; ++v) first[v + 1] += first[v];
+  {
+    std::vector<std::size_t> fill(first.begin(), first.end() - 1);
+    for (std::size_t i = 0; i < m; ++i)
+      for (int k = 0; k < 4; ++k) star[fill[tet[i][k]]++] = i;
+  }
+  std::vector<char> on_boundary(n, 0);
+  for (const auto& b : ff.boundary_faces())
+    for (int k = 1; k < 4; ++k) on_boundary[tet[b.tet][(b.facet + k) % 4]] = 1;
+
+  // The curves' interior vertices and their two neighbours along the curve.
+  std::vector<std::vector<std::size_t>> neighbours(n);
+  for (const Singular_edge& e : edges) {
+    neighbours.at(e.vertices[0]).push_back(e.vertices[1]);
+    neighbours.at(e.vertices[1]).push_back(e.vertices[0]);
+  }
+  std::vector<std::size_t> movable;
+  for (std::size_t v = 0; v < n; ++v)
+    if (neighbours[v].size() == 2 && !on_boundary[v] && first[v + 1] > first[v]) movable.push_back(v);
+  r.curve_vertices = movable.size();
+
+  auto point = [](const Eigen::Vector3d& x) { return Point_3(x(0), x(1), x(2)); };
+  auto orientation = [&](std::size_t i) {
+    return CGAL::orientation(point(p[tet[i][0]]), point(p[tet[i][1]]), point(p[tet[i][2]]), point(p[tet[i][3]]));
+  };
+  // Each tetrahedron keeps the orientation it has in the mesh.
+  std::vector<CGAL::Orientation> sign(m);
+  for (std::size_t i = 0; i < m; ++i) sign[i] = orientation(i);
+
+  std::vector<Eigen::Vector3d> start(movable.size());
+  std::vector<char> moved(movable.size(), 0);
+  for (std::size_t k = 0; k < movable.size(); ++k) start[k] = p[movable[k]];
+  for (int sweep = 0; sweep < options.sweeps; ++sweep)
+    for (std::size_t k = 0; k < movable.size(); ++k) {
+      const std::size_t v = movable[k];
+      const Eigen::Vector3d old = p[v];
+      const Eigen::Vector3d target = 0.5 * (p[neighbours[v][0]] + p[neighbours[v][1]]);
+      bool done = false;
+      for (double step = options.step; !done && step >= options.step / 4; step /= 2) {
+        p[v] = old + step * (target - old);
+        done = std::all_of(star.begin() + first[v], star.begin() + first[v + 1],
+                           [&](std::size_t i) { return orientation(i) == sign[i]; });
+      }
+      if (!done) {
+        p[v] = old;
+        ++r.refused_moves;
+      } else if (p[v] != old) {
+        moved[k] = 1;
+      }
+    }
+  for (std::size_t k = 0; k < movable.size(); ++k) {
+    if (!moved[k]) continue;
+    ++r.moved_vertices;
+    const std::size_t v = movable[k];
+    // The curve edges' lengths before: the neighbours may have moved too.
+    double length = 0;
+    for (std::size_t w : neighbours[v]) {
+      const auto it = std::lower_bound(movable.begin(), movable.end(), w);
+      const Eigen::Vector3d& q = (it != movable.end() && *it == w) ? start[std::size_t(it - movable.begin())] : p[w];
+      length += 0.5 * (q - start[k]).norm();
+    }
+    if (length > 0) r.max_relative_displacement = std::max(r.max_relative_displacement, (p[v] - start[k]).norm() / length);
+  }
+  r.seconds = timer.time();
+  if (report) *report = r;
+  return p;
+}
+
+} // namespace CGAL_ext
+
+#endif // CGAL_EXT_SINGULAR_CURVE_STRAIGHTENING_3_H
