@@ -177,9 +177,10 @@ Hex_run hex_pipeline(const Hex_tools& tools, const CGAL_ext::IO::Medit_mesh& mes
   Hex_run q;
   CGAL_ext::IO::Medit_mesh tets;
   tets.vertices = mesh.vertices;
-  if (positions)
-    for (std::size_t v = 0; v < tets.vertices.size(); ++v)
-      for (int c = 0; c < 3; ++c) tets.vertices[v][std::size_t(c)] = (*positions)[v](c);
+  if (positions) // unused vertices have none (NaN)
+    for (std::size_t v = 0; v < std::min(tets.vertices.size(), positions->size()); ++v)
+      if ((*positions)[v].allFinite())
+        for (int c = 0; c < 3; ++c) tets.vertices[v][std::size_t(c)] = (*positions)[v](c);
   tets.tetrahedra = mesh.tetrahedra;
   CGAL_ext::IO::write_medit_mesh((dir / "mesh.mesh").string(), tets);
   std::vector<std::array<double, 9>> gradients(ff.size());

@@ -494,6 +494,31 @@ TEST_CASE("generate straightens the singular curves: only their interior vertice
   REQUIRE(vtu.points.values.size() == 3 * ma.vertices.size());
   for (std::size_t v = 0; v < ma.vertices.size(); ++v)
     for (int c = 0; c < 3; ++c) CHECK(vtu.points.values[3 * v + std::size_t(c)] == ma.vertices[v][std::size_t(c)]);
+
+  // A vertex that no tetrahedron uses, first in the file, shifts every index; it is written where it was.
+  CGAL_ext::IO::Medit_mesh shifted;
+  shifted.vertices.push_back({9, 9, 9});
+  shifted.vertices.insert(shifted.vertices.end(), mb.vertices.begin(), mb.vertices.end());
+  for (auto t : mb.tetrahedra) {
+    for (auto& v : t) ++v;
+    shifted.tetrahedra.push_back(t);
+  }
+  const std::string shifted_path = (work / "ball_unused_vertex.mesh").string();
+  CGAL_ext::IO::write_medit_mesh(shifted_path, shifted);
+  const auto shifted_out = work / "ball_unused_vertex_out";
+  const Run c = run("generate " + shifted_path + " --hex-size 0.25 -o " + shifted_out.string());
+  INFO(c.err);
+  REQUIRE(c.exit_code == 0);
+  CHECK(c.err.find("1 vertices are used by no tetrahedron") != std::string::npos);
+  const nlohmann::json rc = read_report(shifted_out);
+  CHECK(rc["straightening"]["kept"] == true);
+  const auto mc = CGAL_ext::IO::read_medit_mesh((shifted_out / "mesh.mesh").string());
+  REQUIRE(mc.vertices.size() == shifted.vertices.size());
+  CHECK(mc.vertices[0] == shifted.vertices[0]);
+  std::size_t moved_here = 0;
+  for (std::size_t v = 1; v < mc.vertices.size(); ++v) moved_here += mc.vertices[v] != shifted.vertices[v];
+  CHECK(moved_here == number(rc, "/straightening/moved_vertices"));
+  CHECK(moved_here > 0);
 }
 
 namespace {

@@ -19,6 +19,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -74,7 +75,8 @@ struct Singular_curve_straightening_report {
 /// \param options the options
 /// \param report if not null, receives what was done
 /// \returns the positions of all vertices, by vertex index (those of the
-///          mesh where nothing moved)
+///          mesh where nothing moved; NaN at an index that no vertex has,
+///          such as an input vertex that no tetrahedron uses)
 /// \throws std::invalid_argument for `sweeps` < 0 or a `step` outside (0, 1]
 template <class Frame_field>
 std::vector<Eigen::Vector3d> straighten_singular_curves(const Frame_field& ff, const std::vector<Singular_edge>& edges,
@@ -87,10 +89,14 @@ std::vector<Eigen::Vector3d> straighten_singular_curves(const Frame_field& ff, c
   CGAL::Real_timer timer;
   timer.start();
   Singular_curve_straightening_report r;
+  // Indexed like the vertices, which may skip indices (a mesh's unused vertices).
   const auto& tr = ff.metric_field().triangulation();
-  std::vector<Eigen::Vector3d> p(tr.number_of_vertices(), Eigen::Vector3d::Zero());
+  std::size_t size = 0;
   for (auto v = tr.finite_vertices_begin(); v != tr.finite_vertices_end(); ++v)
-    p.at(ff.vertex_index(v)) = internal::to_eigen_vector(v->point());
+    size = std::max(size, ff.vertex_index(v) + 1);
+  std::vector<Eigen::Vector3d> p(size, Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
+  for (auto v = tr.finite_vertices_begin(); v != tr.finite_vertices_end(); ++v)
+    p[ff.vertex_index(v)] = internal::to_eigen_vector(v->point());
   const std::size_t n = p.size(), m = ff.size();
 
   // The tetrahedra around each vertex (compressed rows) and their vertices.

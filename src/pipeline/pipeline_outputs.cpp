@@ -154,8 +154,10 @@ void write_pipeline_outputs(const std::string& directory, const Pipeline_tet_mes
   std::optional<IO::Medit_mesh> moved;
   if (!frames.positions.empty()) {
     moved = mesh.mesh;
-    for (std::size_t v = 0; v < moved->vertices.size(); ++v)
-      for (int c = 0; c < 3; ++c) moved->vertices[v][std::size_t(c)] = frames.positions.at(v)(c);
+    // Unused vertices (no position: NaN, or past the end) stay where they are.
+    for (std::size_t v = 0; v < std::min(moved->vertices.size(), frames.positions.size()); ++v)
+      if (frames.positions[v].allFinite())
+        for (int c = 0; c < 3; ++c) moved->vertices[v][std::size_t(c)] = frames.positions[v](c);
   }
   const IO::Medit_mesh& written = moved ? *moved : mesh.mesh;
   write_frame_files(dir, written, *frames.frames, *frames.matchings);
