@@ -237,9 +237,10 @@ Quality measure(const Tr& tr, const Field& field, const Frames& ff, double secon
     auto count = [](const std::vector<CGAL_ext::Singular_edge>& e) {
       return std::count_if(e.begin(), e.end(), [](const auto& s) { return !CGAL_ext::is_meshable(s.type); });
     };
-    positions = CGAL_ext::straighten_singular_curves(ff, edges);
+    CGAL_ext::Singular_curve_straightening_report report;
+    positions = CGAL_ext::straighten_singular_curves(ff, edges, {}, &report);
     auto moved = CGAL_ext::singular_edges(ff, matchings, nullptr, &positions);
-    if (count(moved) <= count(edges)) edges.swap(moved);
+    if (report.moved_vertices > 0 && count(moved) <= count(edges)) edges.swap(moved);
     else positions.clear();
   }
   const std::vector<Eigen::Vector3d>* moved = positions.empty() ? nullptr : &positions;

@@ -337,7 +337,30 @@ TEST_CASE("straightening moves only the curves' interior vertices, turns no tetr
     REQUIRE(g.curves.size() == 1);
     CHECK(g.curves[0].length < singularity_graph(*s->ff, sing).curves[0].length); // straighter, hence shorter
     CHECK(straighten_singular_curves(*s->ff, sing, options) == p); // deterministic
+    if (step == 1.0) CHECK(report.refused_moves > 0); // whole steps would turn tetrahedra over
   }
+  // The mesh's own positions given explicitly type every edge as without them.
+  const auto own = singular_edges(*s->ff, matchings, nullptr, &mesh);
+  REQUIRE(own.size() == sing.size());
+  for (std::size_t k = 0; k < sing.size(); ++k) {
+    CHECK(own[k].vertices == sing[k].vertices);
+    CHECK(own[k].type == sing[k].type);
+    CHECK(own[k].axis_angle_deg == sing[k].axis_angle_deg);
+    CHECK(own[k].midpoint == sing[k].midpoint);
+  }
+  // Fixed vertices stay: every second movable one here.
+  Singular_curve_straightening_options fixing;
+  fixing.fixed_vertices.assign(n, 0);
+  std::size_t fixed = 0;
+  for (std::size_t i = 0, k = 0; i < n; ++i)
+    if (degree[i] == 2 && !boundary[i] && k++ % 2 == 0) fixing.fixed_vertices[i] = 1, ++fixed;
+  REQUIRE(fixed > 0);
+  Singular_curve_straightening_report fixing_report;
+  const auto q = straighten_singular_curves(*s->ff, sing, fixing, &fixing_report);
+  CHECK(fixing_report.curve_vertices == movable - fixed);
+  for (std::size_t i = 0; i < n; ++i)
+    if (fixing.fixed_vertices[i]) CHECK(q[i] == mesh[i]);
+  CHECK(all_positive(q));
   Singular_curve_straightening_options none;
   none.sweeps = 0;
   CHECK(straighten_singular_curves(*s->ff, sing, none) == mesh);

@@ -11,7 +11,8 @@
 // coarser than the 1175 tets, as a hex mesh from this tet mesh should be).
 // 1. load_tet_mesh() reads the .mesh (or meshes a surface with Mesh_3).
 // 2. make_pipeline_metric() divides the metric by h^2 and checks it.
-// 3. generate_pipeline_frame_field() computes, repairs and classifies.
+// 3. generate_pipeline_frame_field() computes, repairs and classifies, then
+//    straightens the singular curves (pipeline_straightening_options()).
 // 4. write_pipeline_outputs() writes the files; pipeline_report() makes the
 //    report, a JSON value (nlohmann-json), and write_pipeline_report() writes it.
 #include <CGAL_ext/Frame_field_pipeline.h>
@@ -54,7 +55,8 @@ int main(int argc, char** argv) {
   CGAL_ext::Frame_field_options options;
   options.progress = stage;
   const CGAL_ext::Pipeline_frame_field frames =
-      CGAL_ext::generate_pipeline_frame_field(field, options, CGAL_ext::Singularity_repair_options(), stage);
+      CGAL_ext::generate_pipeline_frame_field(field, options, CGAL_ext::Singularity_repair_options(), stage,
+                                              CGAL_ext::pipeline_straightening_options(mesh));
 
   CGAL_ext::write_pipeline_outputs(out_dir, mesh, frames);
   const std::string report =

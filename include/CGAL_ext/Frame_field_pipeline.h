@@ -178,11 +178,24 @@ struct Pipeline_frame_field {
   /// The non-meshable singular edges with the mesh's own positions (before
   /// the straightening).
   std::size_t non_meshable_edges_unstraightened = 0;
+  /// The non-meshable singular edges with the moved positions, whether they
+  /// were kept or not.
+  std::size_t non_meshable_edges_straightened = 0;
   /// The positions of the vertices, by index, that the outputs use: the
-  /// straightened ones, or empty for the mesh's own (no straightening, none
-  /// moved, or more non-meshable edges with them).
+  /// straightened ones (NaN at an index no tetrahedron uses), or empty for
+  /// the mesh's own (no straightening, none moved, or more non-meshable
+  /// edges with them).
   std::vector<Eigen::Vector3d> positions;
 };
+
+/// \ingroup PkgCGALExtPipeline
+/// The straightening's options for a mesh: the defaults, with the vertices
+/// of its interior triangles and edges (Medit `Triangles` and `Edges` not on
+/// the boundary) and those between tetrahedra of different references
+/// (subdomains) fixed, so that the straightening moves no interface.
+/// \param mesh the tet mesh
+/// \returns the options `metric-frames generate` uses
+Singular_curve_straightening_options pipeline_straightening_options(const Pipeline_tet_mesh& mesh);
 
 /// \ingroup PkgCGALExtPipeline
 /// Generates the frame field in `metric` (`Frame_field_3::compute()`),
@@ -199,7 +212,9 @@ struct Pipeline_frame_field {
 /// \param repair the repair's options, or none for no repair
 /// \param stage if set, called after the stages `repair`, `singularities`
 ///   and `straightening`
-/// \param straightening the straightening's options, or none for none
+/// \param straightening the straightening's options
+///   (`pipeline_straightening_options()` for generate's), or none not to
+///   straighten (the default)
 /// \returns the frame field, its repair report, matchings and singularities
 Pipeline_frame_field generate_pipeline_frame_field(
     const Pipeline_metric& metric, const Frame_field_options& options,

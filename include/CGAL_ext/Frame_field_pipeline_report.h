@@ -90,6 +90,7 @@ inline nlohmann::ordered_json pipeline_straightening_json(const Pipeline_frame_f
           {"max_relative_displacement", s.max_relative_displacement},
           {"kept", !frames.positions.empty()},
           {"non_meshable_before", frames.non_meshable_edges_unstraightened},
+          {"non_meshable_with_moved", frames.non_meshable_edges_straightened},
           {"non_meshable_after", frames.non_meshable_edges}};
 }
 

@@ -205,8 +205,10 @@ constexpr int singular_curve_direction_span = 2;
 ///        as from all edges
 /// \param positions if given, the vertices' positions by vertex index, in
 ///        place of the mesh's (as `straighten_singular_curves()` returns
-///        them): the holonomies stay, the curves' directions are those of
-///        these positions
+///        them; one per vertex index at least): the holonomies and the
+///        loops' senses are the mesh's, the curves' directions, the edges'
+///        midpoints and the metric there those of these positions (the
+///        metric at a midpoint is taken at the same barycentric coordinates)
 /// \returns the singular edges (regular edges are not listed)
 template <class Frame_field>
 std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_field_matchings_3<Frame_field>& matchings,
@@ -266,15 +268,16 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_fie
     auto vertex_position = [&](typename Frame_field::Vertex_handle w) -> Eigen::Vector3d {
       return positions ? (*positions)[ff.vertex_index(w)] : internal::to_eigen_vector(w->point());
     };
-    auto centroid = [&](Cell_handle c) -> Eigen::Vector3d {
-      if (!positions) return ff.centroid(std::size_t(ff.index(c)));
-      return 0.25 * (vertex_position(c->vertex(0)) + vertex_position(c->vertex(1)) + vertex_position(c->vertex(2)) +
-                     vertex_position(c->vertex(3)));
-    };
-    const Eigen::Vector3d pu = vertex_position(u), pv = vertex_position(v);
+    // The loop's sense from the mesh's own geometry: moved positions keep
+    // every cell's orientation, hence the sense, but a sheared ring could
+    // flip this sum.
+    const Eigen::Vector3d mu = internal::to_eigen_vector(u->point()), mv = internal::to_eigen_vector(v->point());
     double turn = 0; // orientation of the circulation about u -> v
-    for (int k = 0; k < n; ++k)
-      turn += (centroid(loop[k]) - pu).cross(centroid(loop[(k + 1) % n]) - pu).dot(pv - pu);
+    for (int k = 0; k < n; ++k) {
+      const std::size_t ia = std::size_t(ff.index(loop[k])), ib = std::size_t(ff.index(loop[(k + 1) % n]));
+      turn += (ff.centroid(ia) - mu).cross(ff.centroid(ib) - mu).dot(mv - mu);
+    }
+    const Eigen::Vector3d pu = vertex_position(u), pv = vertex_position(v);
     if (turn < 0) std::reverse(loop.begin() + 1, loop.end());
     const Eigen::Matrix3d P = loop_product();
     const int monodromy = octahedral_group_index(P, 0);
@@ -283,8 +286,9 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_fie
     f.P = P;
     f.t = pv - pu;
     const Eigen::Vector3d mid = 0.5 * (pu + pv);
-    // A at the edge's midpoint is the mean of its ends' in any geometry: taken at the mesh's own midpoint.
-    const Eigen::Vector3d mesh_mid = 0.5 * (internal::to_eigen_vector(u->point()) + internal::to_eigen_vector(v->point()));
+    // A at the edge's midpoint, whose barycentric coordinates do not depend
+    // on the positions: taken at the mesh's own midpoint.
+    const Eigen::Vector3d mesh_mid = 0.5 * (mu + mv);
     const Eigen::Matrix3d A = field.A_at(loop[0], typename Frame_field::Point_3(mesh_mid(0), mesh_mid(1), mesh_mid(2)));
     const Eigen::Matrix3d& R0 = matchings.rotation(std::size_t(ff.index(loop[0])));
     f.frame_from_metric = R0.transpose() * A;

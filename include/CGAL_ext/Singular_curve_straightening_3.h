@@ -10,7 +10,6 @@
 
 #include <CGAL_ext/Frame_field_singularities_3.h>
 
-#include <CGAL/Real_timer.h>
 #include <CGAL/enum.h>
 
 #include <Eigen/Core>
@@ -32,8 +31,13 @@ struct Singular_curve_straightening_options {
   int sweeps = 5;
   /// The fraction of the way to the midpoint of its two curve neighbours
   /// that a vertex moves in one sweep (halved, then halved again, where a
-  /// tetrahedron would turn over; the vertex stays where both fail).
+  /// tetrahedron would turn over; the vertex stays where all three fail).
   double step = 0.5;
+  /// Vertices that stay, by vertex index (1: fixed), besides the boundary's
+  /// and the nodes: those of an interior surface or edge of the input, or
+  /// between subdomains. Empty, or shorter than the vertex indices: none
+  /// (past its end).
+  std::vector<char> fixed_vertices;
 };
 
 /// \ingroup PkgCGALExtFrames
@@ -48,8 +52,6 @@ struct Singular_curve_straightening_report {
   /// The largest displacement of a vertex, over the mean length of its two
   /// curve edges before.
   double max_relative_displacement = 0;
-  /// Duration in seconds.
-  double seconds = 0;
 };
 
 /// \ingroup PkgCGALExtFrames
@@ -59,15 +61,19 @@ struct Singular_curve_straightening_report {
 /// increasing vertex order, `options.step` of the way towards the midpoint
 /// of its two curve neighbours. A move is refused where a tetrahedron around
 /// the vertex would change its orientation, decided by CGAL's exact
-/// `orientation()` predicate on the rounded candidate point; the step is
-/// then halved twice before the vertex stays. Nodes (ends and junctions),
-/// boundary vertices and all other vertices stay, so the boundary, its
-/// features and the mesh's connectivity are unchanged.
+/// `orientation()` predicate on the rounded candidate point (exact with a
+/// kernel of exact predicates, as the default one); the step is then halved
+/// twice before the vertex stays. Nodes (ends and junctions), boundary
+/// vertices, `options.fixed_vertices` and all other vertices stay, so the
+/// boundary, its features and the mesh's connectivity are unchanged. A
+/// closed loop has no node to hold it: each sweep shrinks it a little.
 ///
-/// The field itself (its frames and matchings) does not depend on where the
-/// interior vertices are; the directions of the curves do, hence their types
-/// (`singular_edges()` with these positions). Deterministic: sequential,
-/// in vertex order.
+/// The field's frames and matchings are kept, not recomputed: with a metric
+/// that varies in space, the transports and energies of the moved cells
+/// would differ slightly, which this ignores (the metric's tensors stay with
+/// their vertices). The curves' directions change, hence their types
+/// (`singular_edges()` with these positions). Deterministic: sequential, in
+/// vertex order.
 ///
 /// \tparam Frame_field a `Frame_field_3` after `compute()` or `set_rotations()`
 /// \param ff the frame field (for the mesh, its boundary and its positions)
@@ -86,8 +92,6 @@ std::vector<Eigen::Vector3d> straighten_singular_curves(const Frame_field& ff, c
   if (options.sweeps < 0) throw std::invalid_argument("straighten_singular_curves: sweeps must be >= 0");
   if (!(options.step > 0 && options.step <= 1))
     throw std::invalid_argument("straighten_singular_curves: step must be in (0, 1]");
-  CGAL::Real_timer timer;
-  timer.start();
   Singular_curve_straightening_report r;
   // Indexed like the vertices, which may skip indices (a mesh's unused vertices).
   const auto& tr = ff.metric_field().triangulation();
@@ -125,7 +129,9 @@ std::vector<Eigen::Vector3d> straighten_singular_curves(const Frame_field& ff, c
   }
   std::vector<std::size_t> movable;
   for (std::size_t v = 0; v < n; ++v)
-    if (neighbours[v].size() == 2 && !on_boundary[v] && first[v + 1] > first[v]) movable.push_back(v);
+    if (neighbours[v].size() == 2 && !on_boundary[v] && first[v + 1] > first[v] &&
+        !(v < options.fixed_vertices.size() && options.fixed_vertices[v]))
+      movable.push_back(v);
   r.curve_vertices = movable.size();
 
   auto point = [](const Eigen::Vector3d& x) { return Point_3(x(0), x(1), x(2)); };
@@ -170,7 +176,6 @@ std::vector<Eigen::Vector3d> straighten_singular_curves(const Frame_field& ff, c
     }
     if (length > 0) r.max_relative_displacement = std::max(r.max_relative_displacement, (p[v] - start[k]).norm() / length);
   }
-  r.seconds = timer.time();
   if (report) *report = r;
   return p;
 }

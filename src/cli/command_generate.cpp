@@ -153,7 +153,7 @@ int run_generate(const Generate_request& r) {
     };
   }
   std::optional<Singular_curve_straightening_options> straightening;
-  if (!r.keep_vertices) straightening.emplace();
+  if (!r.keep_vertices) straightening = pipeline_straightening_options(mesh);
   const Pipeline_frame_field frames =
       generate_pipeline_frame_field(field, plan.options, repair_options, stage, straightening);
 

@@ -195,6 +195,28 @@ Pipeline_metric make_pipeline_metric(const Pipeline_tet_mesh& mesh, const Pipeli
   return m;
 }
 
+Singular_curve_straightening_options pipeline_straightening_options(const Pipeline_tet_mesh& mesh) {
+  const IO::Medit_mesh& m = mesh.mesh;
+  Singular_curve_straightening_options options;
+  options.fixed_vertices.assign(m.vertices.size(), 0);
+  // Interior triangles and edges (boundary vertices stay anyway), and the
+  // vertices whose tetrahedra carry more than one reference.
+  for (const auto& t : m.triangles)
+    for (std::size_t v : t) options.fixed_vertices.at(v) = 1;
+  for (const auto& e : m.edges)
+    for (std::size_t v : e) options.fixed_vertices.at(v) = 1;
+  if (m.tetrahedron_references.size() == m.tetrahedra.size()) {
+    std::vector<int> reference(m.vertices.size());
+    std::vector<char> seen(m.vertices.size(), 0);
+    for (std::size_t t = 0; t < m.tetrahedra.size(); ++t)
+      for (std::size_t v : m.tetrahedra[t]) {
+        if (!seen[v]) seen[v] = 1, reference[v] = m.tetrahedron_references[t];
+        else if (reference[v] != m.tetrahedron_references[t]) options.fixed_vertices[v] = 1;
+      }
+  }
+  return options;
+}
+
 Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric, const Frame_field_options& options,
                                                    const std::optional<Singularity_repair_options>& repair,
                                                    const Pipeline_stage_callback& stage,
@@ -230,6 +252,7 @@ Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric
     std::vector<Singular_edge> edges = singular_edges(ff, *r.matchings, nullptr, &moved);
     const std::size_t bad = non_meshable(edges);
     const bool keep = report.moved_vertices > 0 && bad <= r.non_meshable_edges;
+    r.non_meshable_edges_straightened = bad;
     if (keep) {
       r.positions = std::move(moved);
       r.singular_edges = std::move(edges);

@@ -149,8 +149,7 @@ void write_pipeline_outputs(const std::string& directory, const Pipeline_tet_mes
   std::filesystem::create_directories(directory, ec);
   if (ec) throw std::runtime_error(directory + ": cannot create the output directory: " + ec.message());
   const std::filesystem::path dir(directory);
-  // With straightened curves, every file shows the moved vertices (the
-  // metric's tensors stay with their vertices).
+  // With straightened curves, every file shows the moved vertices.
   std::optional<IO::Medit_mesh> moved;
   if (!frames.positions.empty()) {
     moved = mesh.mesh;
