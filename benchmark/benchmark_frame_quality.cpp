@@ -238,7 +238,7 @@ Quality measure(const Tr& tr, const Field& field, const Frames& ff, double secon
       return std::count_if(e.begin(), e.end(), [](const auto& s) { return !CGAL_ext::is_meshable(s.type); });
     };
     CGAL_ext::Singular_curve_straightening_report report;
-    positions = CGAL_ext::straighten_singular_curves(ff, edges, {}, &report);
+    positions = CGAL_ext::straighten_singular_curves(ff, matchings, edges, {}, &report);
     auto moved = CGAL_ext::singular_edges(ff, matchings, nullptr, &positions);
     if (report.moved_vertices > 0 && count(moved) <= count(edges)) edges.swap(moved);
     else positions.clear();

@@ -498,6 +498,26 @@ TEST_CASE("generate straightens the singular curves: only their interior vertice
     for (std::size_t c = 0; c < 3; ++c)
       CHECK(moved_singularities.points.values[3 * k + c] == ma.vertices[std::size_t(index[k]) - 1][c]);
 
+  // The guard: no edge is non-meshable with the moved vertices that was not without them. The torus at
+  // this size has moves that would make some (2 vertices put back, measured in the Release build).
+  const auto torus_moved = work / "torus_straightened", torus_kept = work / "torus_kept";
+  const Run t1 = run("generate builtin:torus --hex-size 0.2681876 -o " + torus_moved.string());
+  const Run t2 = run("generate builtin:torus --hex-size 0.2681876 --keep-vertices -o " + torus_kept.string());
+  INFO(t1.err << t2.err);
+  REQUIRE(t1.exit_code == 0);
+  REQUIRE(t2.exit_code == 0);
+  auto non_meshable = [](const nlohmann::json& report) {
+    std::set<std::pair<double, double>> out;
+    for (const auto& e : report["singularities"]["non_meshable_edge_list"])
+      out.insert({e["vertices"][0].get<double>(), e["vertices"][1].get<double>()});
+    return out;
+  };
+  const nlohmann::json t1r = read_report(torus_moved), t2r = read_report(torus_kept);
+  for (const auto& e : non_meshable(t1r)) CHECK(non_meshable(t2r).count(e) == 1);
+  CHECK(number(t1r, "/straightening/non_meshable_after") <= number(t1r, "/straightening/non_meshable_before"));
+  CHECK(number(t1r, "/straightening/non_meshable_with_moved") == number(t1r, "/straightening/non_meshable_after"));
+  CHECK(t1r["straightening"]["kept"] == true);
+
   // A vertex that no tetrahedron uses, first in the file, shifts every index; it is written where it was.
   CGAL_ext::IO::Medit_mesh shifted;
   shifted.vertices.push_back({9, 9, 9});
@@ -644,7 +664,9 @@ TEST_CASE("generate's straightening keeps interior surfaces, edges and subdomain
   CGAL_ext::Pipeline_tet_mesh mesh = CGAL_ext::load_tet_mesh(l_shape);
   CGAL_ext::IO::Medit_mesh& m = mesh.mesh;
   m.triangles.clear();
+  m.triangle_references.clear();
   m.edges.clear();
+  m.edge_references.clear();
   m.tetrahedron_references.assign(m.tetrahedra.size(), 1);
   CHECK(CGAL_ext::pipeline_straightening_options(mesh).fixed_vertices == std::vector<char>(m.vertices.size(), 0));
   std::size_t interface = 0;
@@ -662,15 +684,22 @@ TEST_CASE("generate's straightening keeps interior surfaces, edges and subdomain
     CHECK(bool(options.fixed_vertices[v]) == expected);
   }
   CHECK(interface > 0);
-  // An interior triangle's and an edge's vertices are fixed too.
+  // A triangle's and an edge's vertices are fixed too, unless their reference is 0 (as TetGen's interior faces).
   m.tetrahedron_references.assign(m.tetrahedra.size(), 1);
   m.triangles.push_back({m.tetrahedra[0][0], m.tetrahedra[0][1], m.tetrahedra[0][2]});
+  m.triangle_references.push_back(3);
   m.edges.push_back({m.tetrahedra[5][2], m.tetrahedra[5][3]});
+  m.edge_references.push_back(4);
+  m.triangles.push_back({m.tetrahedra[9][0], m.tetrahedra[9][1], m.tetrahedra[9][3]});
+  m.triangle_references.push_back(0);
+  m.edges.push_back({m.tetrahedra[12][0], m.tetrahedra[12][1]});
+  m.edge_references.push_back(0);
   options = CGAL_ext::pipeline_straightening_options(mesh);
   std::vector<char> expected(m.vertices.size(), 0);
   for (std::size_t v : m.triangles[0]) expected[v] = 1;
   for (std::size_t v : m.edges[0]) expected[v] = 1;
   CHECK(options.fixed_vertices == expected);
+  CHECK(std::count(expected.begin(), expected.end(), 1) >= 3);
 }
 
 TEST_CASE("the pipeline's library functions write the files of generate, bit for bit", "[cli][generate][pipeline]") {

@@ -311,12 +311,15 @@ TEST_CASE("straightening moves only the curves' interior vertices, turns no tetr
     options.sweeps = sweeps;
     options.step = step;
     Singular_curve_straightening_report report;
-    const std::vector<Eigen::Vector3d> p = straighten_singular_curves(*s->ff, sing, options, &report);
+    const std::vector<Eigen::Vector3d> p = straighten_singular_curves(*s->ff, matchings, sing, options, &report);
     REQUIRE(p.size() == n);
     CHECK(report.curve_vertices == movable);
     CHECK(report.moved_vertices > 0);
     CHECK(report.moved_vertices <= movable);
     CHECK(report.max_relative_displacement > 0);
+    CHECK(report.non_meshable_before == 0);
+    CHECK(report.non_meshable_after == 0);
+    CHECK(report.reverted_vertices == 0); // no edge turned non-meshable
     std::size_t moved = 0;
     for (std::size_t i = 0; i < n; ++i) {
       if (degree[i] == 2 && !boundary[i]) moved += p[i] != mesh[i];
@@ -336,7 +339,7 @@ TEST_CASE("straightening moves only the curves' interior vertices, turns no tetr
     const Singularity_graph g = singularity_graph(*s->ff, again, &p);
     REQUIRE(g.curves.size() == 1);
     CHECK(g.curves[0].length < singularity_graph(*s->ff, sing).curves[0].length); // straighter, hence shorter
-    CHECK(straighten_singular_curves(*s->ff, sing, options) == p); // deterministic
+    CHECK(straighten_singular_curves(*s->ff, matchings, sing, options) == p); // deterministic
     if (step == 1.0) CHECK(report.refused_moves > 0); // whole steps would turn tetrahedra over
   }
   // The mesh's own positions given explicitly type every edge as without them.
@@ -356,21 +359,21 @@ TEST_CASE("straightening moves only the curves' interior vertices, turns no tetr
     if (degree[i] == 2 && !boundary[i] && k++ % 2 == 0) fixing.fixed_vertices[i] = 1, ++fixed;
   REQUIRE(fixed > 0);
   Singular_curve_straightening_report fixing_report;
-  const auto q = straighten_singular_curves(*s->ff, sing, fixing, &fixing_report);
+  const auto q = straighten_singular_curves(*s->ff, matchings, sing, fixing, &fixing_report);
   CHECK(fixing_report.curve_vertices == movable - fixed);
   for (std::size_t i = 0; i < n; ++i)
     if (fixing.fixed_vertices[i]) CHECK(q[i] == mesh[i]);
   CHECK(all_positive(q));
   Singular_curve_straightening_options none;
   none.sweeps = 0;
-  CHECK(straighten_singular_curves(*s->ff, sing, none) == mesh);
+  CHECK(straighten_singular_curves(*s->ff, matchings, sing, none) == mesh);
   for (double bad : {0.0, -0.5, 1.5, std::nan("")}) {
     Singular_curve_straightening_options o;
     o.step = bad;
-    CHECK_THROWS_AS(straighten_singular_curves(*s->ff, sing, o), std::invalid_argument);
+    CHECK_THROWS_AS(straighten_singular_curves(*s->ff, matchings, sing, o), std::invalid_argument);
   }
   none.sweeps = -1;
-  CHECK_THROWS_AS(straighten_singular_curves(*s->ff, sing, none), std::invalid_argument);
+  CHECK_THROWS_AS(straighten_singular_curves(*s->ff, matchings, sing, none), std::invalid_argument);
 }
 
 TEST_CASE("non-meshable holonomies are flagged where they are", "[singularities]") {

@@ -190,8 +190,9 @@ struct Pipeline_frame_field {
 
 /// \ingroup PkgCGALExtPipeline
 /// The straightening's options for a mesh: the defaults, with the vertices
-/// of its interior triangles and edges (Medit `Triangles` and `Edges` not on
-/// the boundary) and those between tetrahedra of different references
+/// of its triangles and edges of a reference other than 0 (Medit `Triangles`
+/// and `Edges`: inside, an interface; TetGen `-f` lists every face, interior
+/// ones with 0) and those between tetrahedra of different references
 /// (subdomains) fixed, so that the straightening moves no interface.
 /// \param mesh the tet mesh
 /// \returns the options `metric-frames generate` uses

@@ -87,6 +87,7 @@ inline nlohmann::ordered_json pipeline_straightening_json(const Pipeline_frame_f
   return {{"curve_vertices", s.curve_vertices},
           {"moved_vertices", s.moved_vertices},
           {"refused_moves", s.refused_moves},
+          {"reverted_vertices", s.reverted_vertices},
           {"max_relative_displacement", s.max_relative_displacement},
           {"kept", !frames.positions.empty()},
           {"non_meshable_before", frames.non_meshable_edges_unstraightened},

@@ -8,6 +8,7 @@
 /// the curves zigzag less: an integer-grid map lays every curve on a straight
 /// grid line, and the tetrahedra along a zigzag must shear to follow it.
 
+#include <CGAL_ext/Frame_field_matchings_3.h>
 #include <CGAL_ext/Frame_field_singularities_3.h>
 
 #include <CGAL/enum.h>
@@ -19,6 +20,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <set>
 #include <stdexcept>
 #include <vector>
 
@@ -45,10 +47,18 @@ struct Singular_curve_straightening_options {
 struct Singular_curve_straightening_report {
   /// Interior vertices with exactly two singular edges: those that may move.
   std::size_t curve_vertices = 0;
-  /// Of them, those moved at least once.
+  /// Of them, those away from where they were in the end.
   std::size_t moved_vertices = 0;
   /// Moves refused because a tetrahedron would have turned over.
   std::size_t refused_moves = 0;
+  /// Moved vertices put back where they were, near an edge that the moves
+  /// made non-meshable (and where that would turn a tetrahedron over).
+  std::size_t reverted_vertices = 0;
+  /** @{ */
+  /// Non-meshable singular edges with the mesh's positions and with the
+  /// returned ones.
+  std::size_t non_meshable_before = 0, non_meshable_after = 0;
+  /** @} */
   /// The largest displacement of a vertex, over the mean length of its two
   /// curve edges before.
   double max_relative_displacement = 0;
@@ -68,6 +78,14 @@ struct Singular_curve_straightening_report {
 /// boundary, its features and the mesh's connectivity are unchanged. A
 /// closed loop has no node to hold it: each sweep shrinks it a little.
 ///
+/// Then no edge may become non-meshable: while the edges, typed with the
+/// moved positions, include a non-meshable one that was meshable, the moved
+/// vertices within `singular_curve_direction_span + 1` edges of it along
+/// the curves (those its type depends on) go back where they were, as do
+/// moved vertices of a tetrahedron that a put-back turned over. This ends
+/// at the latest with every vertex back, so the result never has more
+/// non-meshable edges than the mesh.
+///
 /// The field's frames and matchings are kept, not recomputed: with a metric
 /// that varies in space, the transports and energies of the moved cells
 /// would differ slightly, which this ignores (the metric's tensors stay with
@@ -77,6 +95,7 @@ struct Singular_curve_straightening_report {
 ///
 /// \tparam Frame_field a `Frame_field_3` after `compute()` or `set_rotations()`
 /// \param ff the frame field (for the mesh, its boundary and its positions)
+/// \param matchings its matchings (to type the edges with moved positions)
 /// \param edges its singular edges, as `singular_edges()` returns them
 /// \param options the options
 /// \param report if not null, receives what was done
@@ -85,7 +104,9 @@ struct Singular_curve_straightening_report {
 ///          such as an input vertex that no tetrahedron uses)
 /// \throws std::invalid_argument for `sweeps` < 0 or a `step` outside (0, 1]
 template <class Frame_field>
-std::vector<Eigen::Vector3d> straighten_singular_curves(const Frame_field& ff, const std::vector<Singular_edge>& edges,
+std::vector<Eigen::Vector3d> straighten_singular_curves(const Frame_field& ff,
+                                                        const Frame_field_matchings_3<Frame_field>& matchings,
+                                                        const std::vector<Singular_edge>& edges,
                                                         const Singular_curve_straightening_options& options = {},
                                                         Singular_curve_straightening_report* report = nullptr) {
   using Point_3 = typename Frame_field::Point_3;
@@ -143,7 +164,6 @@ std::vector<Eigen::Vector3d> straighten_singular_curves(const Frame_field& ff, c
   for (std::size_t i = 0; i < m; ++i) sign[i] = orientation(i);
 
   std::vector<Eigen::Vector3d> start(movable.size());
-  std::vector<char> moved(movable.size(), 0);
   for (std::size_t k = 0; k < movable.size(); ++k) start[k] = p[movable[k]];
   for (int sweep = 0; sweep < options.sweeps; ++sweep)
     for (std::size_t k = 0; k < movable.size(); ++k) {
@@ -159,12 +179,69 @@ std::vector<Eigen::Vector3d> straighten_singular_curves(const Frame_field& ff, c
       if (!done) {
         p[v] = old;
         ++r.refused_moves;
-      } else if (p[v] != old) {
-        moved[k] = 1;
       }
     }
+
+  // The guard. The edges are typed on the tetrahedra around the curves,
+  // which hold every singular edge and the curves' stretches.
+  auto index_of = [&](std::size_t v) { // in `movable`, or its size
+    const auto it = std::lower_bound(movable.begin(), movable.end(), v);
+    return it != movable.end() && *it == v ? std::size_t(it - movable.begin()) : movable.size();
+  };
+  std::vector<std::size_t> around;
+  for (std::size_t v = 0; v < n; ++v)
+    if (!neighbours[v].empty()) around.insert(around.end(), star.begin() + first[v], star.begin() + first[v + 1]);
+  std::sort(around.begin(), around.end());
+  around.erase(std::unique(around.begin(), around.end()), around.end());
+  std::set<std::array<std::size_t, 2>> bad_before;
+  for (const Singular_edge& e : edges)
+    if (!is_meshable(e.type)) bad_before.insert(e.vertices);
+  r.non_meshable_before = bad_before.size();
+  auto put_back = [&](std::vector<std::size_t> queue) { // then the moved vertices of turned-over tetrahedra
+    while (!queue.empty()) {
+      for (std::size_t v : queue) p[v] = start[index_of(v)];
+      r.reverted_vertices += queue.size();
+      std::vector<std::size_t> next;
+      for (std::size_t v : queue)
+        for (auto i = star.begin() + first[v]; i != star.begin() + first[v + 1]; ++i)
+          if (orientation(*i) != sign[*i])
+            for (std::size_t w : tet[*i]) {
+              const std::size_t k = index_of(w);
+              if (k < movable.size() && p[w] != start[k]) next.push_back(w);
+            }
+      std::sort(next.begin(), next.end());
+      next.erase(std::unique(next.begin(), next.end()), next.end());
+      queue.swap(next);
+    }
+  };
+  for (;;) {
+    const std::vector<Singular_edge> typed = singular_edges(ff, matchings, &around, &p);
+    std::vector<std::size_t> reached, ring;
+    for (const Singular_edge& e : typed)
+      if (!is_meshable(e.type) && !bad_before.count(e.vertices)) ring.insert(ring.end(), e.vertices.begin(), e.vertices.end());
+    r.non_meshable_after = std::size_t(
+        std::count_if(typed.begin(), typed.end(), [](const Singular_edge& e) { return !is_meshable(e.type); }));
+    if (ring.empty()) break;
+    // The vertices within reach along the curves.
+    for (int depth = 0; depth <= singular_curve_direction_span + 1 && !ring.empty(); ++depth) {
+      reached.insert(reached.end(), ring.begin(), ring.end());
+      std::vector<std::size_t> next;
+      for (std::size_t v : ring) next.insert(next.end(), neighbours[v].begin(), neighbours[v].end());
+      ring.swap(next);
+    }
+    std::vector<std::size_t> back;
+    for (std::size_t v : reached) {
+      const std::size_t k = index_of(v);
+      if (k < movable.size() && p[v] != start[k]) back.push_back(v);
+    }
+    std::sort(back.begin(), back.end());
+    back.erase(std::unique(back.begin(), back.end()), back.end());
+    if (back.empty()) break; // cannot happen: with every vertex back the types are the mesh's
+    put_back(back);
+  }
+
   for (std::size_t k = 0; k < movable.size(); ++k) {
-    if (!moved[k]) continue;
+    if (p[movable[k]] == start[k]) continue;
     ++r.moved_vertices;
     const std::size_t v = movable[k];
     // The curve edges' lengths before: the neighbours may have moved too.

@@ -199,12 +199,15 @@ Singular_curve_straightening_options pipeline_straightening_options(const Pipeli
   const IO::Medit_mesh& m = mesh.mesh;
   Singular_curve_straightening_options options;
   options.fixed_vertices.assign(m.vertices.size(), 0);
-  // Interior triangles and edges (boundary vertices stay anyway), and the
+  // Triangles and edges with a reference other than 0 (boundary vertices
+  // stay anyway; TetGen -f lists every interior face, with 0), and the
   // vertices whose tetrahedra carry more than one reference.
-  for (const auto& t : m.triangles)
-    for (std::size_t v : t) options.fixed_vertices.at(v) = 1;
-  for (const auto& e : m.edges)
-    for (std::size_t v : e) options.fixed_vertices.at(v) = 1;
+  for (std::size_t i = 0; i < m.triangles.size(); ++i)
+    if (i >= m.triangle_references.size() || m.triangle_references[i] != 0)
+      for (std::size_t v : m.triangles[i]) options.fixed_vertices.at(v) = 1;
+  for (std::size_t i = 0; i < m.edges.size(); ++i)
+    if (i >= m.edge_references.size() || m.edge_references[i] != 0)
+      for (std::size_t v : m.edges[i]) options.fixed_vertices.at(v) = 1;
   if (m.tetrahedron_references.size() == m.tetrahedra.size()) {
     std::vector<int> reference(m.vertices.size());
     std::vector<char> seen(m.vertices.size(), 0);
@@ -248,7 +251,8 @@ Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric
                              " nodes; " + std::to_string(r.non_meshable_edges) + " non-meshable edges");
   if (straightening) {
     Singular_curve_straightening_report report;
-    std::vector<Eigen::Vector3d> moved = straighten_singular_curves(ff, r.singular_edges, *straightening, &report);
+    std::vector<Eigen::Vector3d> moved =
+        straighten_singular_curves(ff, *r.matchings, r.singular_edges, *straightening, &report);
     std::vector<Singular_edge> edges = singular_edges(ff, *r.matchings, nullptr, &moved);
     const std::size_t bad = non_meshable(edges);
     const bool keep = report.moved_vertices > 0 && bad <= r.non_meshable_edges;
@@ -260,9 +264,11 @@ Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric
       r.graph = singularity_graph(ff, r.singular_edges, &r.positions);
     }
     r.straightening = report;
-    char moves[120];
-    std::snprintf(moves, sizeof moves, "%zu of %zu curve vertices moved (at most %.3g of their edges' length); ",
-                  report.moved_vertices, report.curve_vertices, report.max_relative_displacement);
+    char moves[200];
+    std::snprintf(moves, sizeof moves,
+                  "%zu of %zu curve vertices moved (at most %.3g of their edges' length; %zu put back); ",
+                  report.moved_vertices, report.curve_vertices, report.max_relative_displacement,
+                  report.reverted_vertices);
     const std::string before = std::to_string(r.non_meshable_edges_unstraightened), after = std::to_string(bad);
     const std::string detail = moves + (report.moved_vertices == 0 ? "nothing changed"
                                         : keep ? before + " -> " + after + " non-meshable edges"
