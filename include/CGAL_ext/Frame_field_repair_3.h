@@ -10,6 +10,7 @@
 #include <CGAL_ext/Frame_field_matchings_3.h>
 #include <CGAL_ext/Frame_field_singularities_3.h>
 #include <CGAL_ext/internal/seeded_rotation.h>
+#include <CGAL_ext/internal/tets_around_vertices.h>
 
 #include <CGAL/Real_timer.h>
 
@@ -101,14 +102,7 @@ public:
     std::size_t vertices = 0;
     for (std::size_t i = 0; i < n; ++i)
       for (int k = 0; k < 4; ++k) vertices = std::max(vertices, vertex(i, k) + 1);
-    first_.assign(vertices + 1, 0);
-    star_.resize(4 * n);
-    for (std::size_t i = 0; i < n; ++i)
-      for (int k = 0; k < 4; ++k) ++first_[vertex(i, k) + 1];
-    for (std::size_t v = 0; v < vertices; ++v) first_[v + 1] += first_[v];
-    std::vector<std::size_t> fill(first_.begin(), first_.end() - 1);
-    for (std::size_t i = 0; i < n; ++i)
-      for (int k = 0; k < 4; ++k) star_[fill[vertex(i, k)]++] = i;
+    tets_around_vertices(ff, vertices, first_, star_);
     reached_.assign(vertices, 0);
     bad_ = non_meshable_edges(singular_edges(ff, matchings_));
   }

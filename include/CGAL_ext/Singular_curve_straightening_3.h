@@ -10,6 +10,7 @@
 
 #include <CGAL_ext/Frame_field_matchings_3.h>
 #include <CGAL_ext/Frame_field_singularities_3.h>
+#include <CGAL_ext/internal/tets_around_vertices.h>
 
 #include <CGAL/enum.h>
 
@@ -124,20 +125,12 @@ std::vector<Eigen::Vector3d> straighten_singular_curves(const Frame_field& ff,
     p[ff.vertex_index(v)] = internal::to_eigen_vector(v->point());
   const std::size_t n = p.size(), m = ff.size();
 
-  // The tetrahedra around each vertex (compressed rows) and their vertices.
+  // The tetrahedra's vertices, and the tetrahedra around each vertex.
   std::vector<std::array<std::size_t, 4>> tet(m);
-  std::vector<std::size_t> first(n + 1, 0), star(4 * m);
   for (std::size_t i = 0; i < m; ++i)
-    for (int k = 0; k < 4; ++k) {
-      tet[i][k] = ff.vertex_index(ff.cell(i)->vertex(k));
-      ++first[tet[i][k] + 1];
-    }
-  for (std::size_t v = 0; v < n; ++v) first[v + 1] += first[v];
-  {
-    std::vector<std::size_t> fill(first.begin(), first.end() - 1);
-    for (std::size_t i = 0; i < m; ++i)
-      for (int k = 0; k < 4; ++k) star[fill[tet[i][k]]++] = i;
-  }
+    for (int k = 0; k < 4; ++k) tet[i][k] = ff.vertex_index(ff.cell(i)->vertex(k));
+  std::vector<std::size_t> first, star;
+  internal::tets_around_vertices(ff, n, first, star);
   std::vector<char> on_boundary(n, 0);
   for (const auto& b : ff.boundary_faces())
     for (int k = 1; k < 4; ++k) on_boundary[tet[b.tet][(b.facet + k) % 4]] = 1;
