@@ -902,6 +902,7 @@ TEST_CASE("the repair's restarts find meshable minima on a ball, and are reporte
     const auto s = computed_ball_field();
     Singularity_repair_options o;
     o.restarts = {restarts};
+    o.max_further_rounds = 0; // their restarts would blur the comparison
     const Singularity_repair_report r = repair_singularities(*s->ff, o);
     INFO("restarts " << restarts << ": rounds " << r.rounds << ", regions " << r.regions_accepted << " of "
                      << r.regions_tried << ", " << r.regions_from_restarts << " from restarts");
@@ -915,4 +916,68 @@ TEST_CASE("the repair's restarts find meshable minima on a ball, and are reporte
     // between the two: 0 and 1).
     CHECK((r.regions_from_restarts > 0) == (restarts > 0));
   }
+}
+
+TEST_CASE("the repair's further rounds attack what the first rounds leave, and stop when a turn fixes nothing",
+          "[singularities][repair]") {
+  // One round without restarts leaves non-meshable edges on this ball.
+  Singularity_repair_options first;
+  first.radii = {2};
+  first.restarts = {0};
+  first.max_further_rounds = 0;
+  const auto plain = computed_ball_field();
+  const Singularity_repair_report p = repair_singularities(*plain->ff, first);
+  REQUIRE(p.rounds == 1);
+  REQUIRE(p.non_meshable_after > 0);
+
+  Singularity_repair_options further = first;
+  further.max_further_rounds = 6;
+  std::vector<int> radii;
+  std::vector<std::size_t> kept, left;
+  further.progress = [&](int round, int radius, std::size_t, std::size_t accepted, std::size_t remaining) {
+    CHECK(round == int(radii.size()) + 1);
+    radii.push_back(radius), kept.push_back(accepted), left.push_back(remaining);
+  };
+  const auto s = computed_ball_field();
+  const Singularity_repair_report r = repair_singularities(*s->ff, further);
+  INFO("rounds " << r.rounds << ", left " << r.non_meshable_after << " (one round: " << p.non_meshable_after << ")");
+  CHECK(r.non_meshable_before == p.non_meshable_before);
+  CHECK(r.non_meshable_after < p.non_meshable_after);
+  CHECK(count_non_meshable(singular_edges(*s->ff)) == r.non_meshable_after);
+  CHECK(r.regions_from_restarts > 0); // only the further rounds restart
+  REQUIRE(r.rounds >= 2);
+  REQUIRE(r.rounds <= 7);
+  REQUIRE(radii.size() == r.rounds);
+  CHECK(radii[0] == 2);
+  for (std::size_t k = 1; k < radii.size(); ++k) CHECK(radii[k] == further.further_radii[(k - 1) % 2]);
+  for (std::size_t k = 1; k < left.size(); ++k) CHECK(left[k] <= left[k - 1]);
+  // Why they stopped: no edge left, the limit, or a whole turn (two
+  // rounds) that kept nothing.
+  if (r.non_meshable_after > 0 && r.rounds < 7) {
+    REQUIRE(r.rounds >= 3);
+    CHECK(kept[r.rounds - 1] == 0);
+    CHECK(kept[r.rounds - 2] == 0);
+  }
+  // The same bits again: the further rounds' seeds are fixed.
+  const auto again = computed_ball_field();
+  further.progress = nullptr;
+  repair_singularities(*again->ff, further);
+  for (std::size_t i = 0; i < s->ff->size(); ++i)
+    CHECK(again->ff->rotation_quaternion(i).coeffs() == s->ff->rotation_quaternion(i).coeffs());
+}
+
+TEST_CASE("the repair refuses options it cannot use", "[singularities][repair]") {
+  const auto s = computed_ball_field();
+  auto refuses = [&](auto change) {
+    Singularity_repair_options o;
+    change(o);
+    CHECK_THROWS_AS(repair_singularities(*s->ff, o), std::invalid_argument);
+  };
+  refuses([](Singularity_repair_options& o) { o.radii = {2, 0}; });
+  refuses([](Singularity_repair_options& o) { o.further_radii = {-1}; });
+  refuses([](Singularity_repair_options& o) { o.restarts = {0, -6}; });
+  refuses([](Singularity_repair_options& o) { o.further_restarts = -1; });
+  refuses([](Singularity_repair_options& o) { o.max_further_rounds = -1; });
+  refuses([](Singularity_repair_options& o) { o.restart_angle_deg = std::nan(""); });
+  refuses([](Singularity_repair_options& o) { o.restart_angle_deg = 200; });
 }

@@ -191,6 +191,20 @@ struct Singularity_repair_options {
   /// in the last round, whose regions are the largest, they cost more for
   /// less.
   std::vector<int> restarts = {0, 6, 0};
+  /// After the rounds of `radii`, while non-meshable edges remain: further
+  /// rounds, at most `max_further_rounds`, whose radii are taken in turn from
+  /// `further_radii`, each with `further_restarts` restarts per region (new
+  /// seeds every round). They stop early when a whole turn of
+  /// `further_radii` kept no region. Each round starts from the frames the
+  /// previous ones left, so a defect that moved or shrank is attacked again
+  /// from there; measured (doc/benchmarks.md): CGAL's anchor 6 -> 1
+  /// non-meshable edges, TetGen's anchor 9 -> 4, TetGen's fandisk 1 -> 0.
+  /// They cost time only where non-meshable edges remain. 0 turns them off.
+  int max_further_rounds = 8;
+  /// The radii of the further rounds, taken in turn.
+  std::vector<int> further_radii = {3, 2};
+  /// Restarts per region in each further round.
+  int further_restarts = 24;
   /// The largest angle of a restart's turns, in degrees.
   double restart_angle_deg = 90;
   /// If set, called after each round with its number (from 1), the radius,

@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -113,7 +114,7 @@ public:
 
   // Round `index` (from 0): regions of `radius` rings around the clusters, in
   // batches of regions that share no vertex. Returns the regions tried and kept.
-  std::pair<std::size_t, std::size_t> round(std::size_t index, int radius) {
+  std::pair<std::size_t, std::size_t> round(std::size_t index, int radius, int restarts) {
     std::vector<std::vector<std::size_t>> regions;
     for (const auto& cluster : edge_clusters(bad_)) regions.push_back(region(cluster, radius));
     std::size_t tried = 0, kept = 0;
@@ -121,7 +122,7 @@ public:
       if (bad_.empty()) break;
       tried += batch.size();
       ++report_.batches;
-      kept += repair_batch(index, regions, batch);
+      kept += repair_batch(index, restarts, regions, batch);
     }
     return {tried, kept};
   }
@@ -194,7 +195,7 @@ private:
   // still have non-meshable edges. Keeps for each region the frames with the
   // fewest non-meshable edges, the lowest energy among equals, if fewer than
   // before; restores the others bit for bit. Returns the regions kept.
-  std::size_t repair_batch(std::size_t round, const std::vector<std::vector<std::size_t>>& regions,
+  std::size_t repair_batch(std::size_t round, int restarts, const std::vector<std::vector<std::size_t>>& regions,
                            const std::vector<std::size_t>& batch) {
     const std::size_t m = batch.size();
     std::vector<std::size_t> tets, seeds;
@@ -282,7 +283,7 @@ private:
     std::vector<Eigen::Quaterniond> saved(tets.size());
     for (std::size_t k = 0; k < tets.size(); ++k) saved[k] = ff_.rotation_quaternion(tets[k]);
 
-    const int starts = 2 + (round < options_.restarts.size() ? std::max(0, options_.restarts[round]) : 0);
+    const int starts = 2 + std::max(0, restarts);
     for (int s = 0; s < starts; ++s) {
       std::vector<std::size_t> open, open_tets; // the regions still short of zero
       for (std::size_t r = 0; r < m; ++r)
@@ -383,6 +384,16 @@ private:
 /// \returns what was done
 template <class Frame_field>
 Singularity_repair_report repair_singularities(Frame_field& ff, const Singularity_repair_options& options = {}) {
+  auto positive = [](const std::vector<int>& radii) {
+    return std::all_of(radii.begin(), radii.end(), [](int r) { return r > 0; });
+  };
+  if (!positive(options.radii) || !positive(options.further_radii))
+    throw std::invalid_argument("repair_singularities: region radii must be at least 1");
+  if (options.max_further_rounds < 0 || options.further_restarts < 0 ||
+      std::any_of(options.restarts.begin(), options.restarts.end(), [](int r) { return r < 0; }))
+    throw std::invalid_argument("repair_singularities: restarts and rounds must not be negative");
+  if (!(options.restart_angle_deg >= 0 && options.restart_angle_deg <= 180))
+    throw std::invalid_argument("repair_singularities: restart_angle_deg must be in [0, 180]");
   CGAL::Real_timer timer;
   timer.start();
   Singularity_repair_report report;
@@ -392,13 +403,23 @@ Singularity_repair_report repair_singularities(Frame_field& ff, const Singularit
   if (report.non_meshable_before == 0) return report;
   std::vector<Eigen::Quaterniond> original(ff.size()); // to undo everything if the final check fails
   for (std::size_t i = 0; i < ff.size(); ++i) original[i] = ff.rotation_quaternion(i);
-  for (int radius : options.radii) {
-    if (repairer.non_meshable().empty()) break;
+  auto round = [&](int radius, int restarts) {
     ++report.rounds;
-    const auto [tried, kept] = repairer.round(report.rounds - 1, radius);
+    const auto [tried, kept] = repairer.round(report.rounds - 1, radius, restarts);
     report.regions_tried += tried;
     report.regions_accepted += kept;
     if (options.progress) options.progress(int(report.rounds), radius, tried, kept, repairer.non_meshable().size());
+    return kept;
+  };
+  for (std::size_t k = 0; k < options.radii.size() && !repairer.non_meshable().empty(); ++k)
+    round(options.radii[k], k < options.restarts.size() ? options.restarts[k] : 0);
+  // Further rounds, until a whole turn of their radii keeps nothing.
+  const std::size_t turn = options.further_radii.size();
+  for (int k = 0, idle = 0; k < options.max_further_rounds && turn > 0 && idle < int(turn) &&
+                            !repairer.non_meshable().empty();
+       ++k) {
+    const std::size_t kept = round(options.further_radii[std::size_t(k) % turn], options.further_restarts);
+    idle = kept > 0 ? 0 : idle + 1;
   }
   // The final count from all edges: the field is never left worse.
   report.non_meshable_after = internal::non_meshable_edges(singular_edges(ff, repairer.matchings())).size();

@@ -317,6 +317,14 @@ CLI::App* add_generate(CLI::App& app, Generate_request& r) {
       ->transform(whole_number(0, 1e6))
       ->excludes(no_repair)
       ->capture_default_str();
+  sub.add_option("--repair-rounds", r.repair_rounds,
+                 "further repair rounds at most, after the three of radius 2, 3 and 4, while non-meshable edges "
+                 "remain: radius 3 and 2 in turn, 24 random restarts per region each; they stop when two in a row "
+                 "fix nothing (0: none)")
+      ->type_name("N")
+      ->transform(whole_number(0, 1e6))
+      ->excludes(no_repair)
+      ->capture_default_str();
   sub.add_flag("--keep-vertices", r.keep_vertices,
                "write the mesh's vertices where they are (default: move the singular curves' interior vertices "
                "towards straight curves, which an integer-grid map meshes with fewer inverted hexes)");
