@@ -44,17 +44,20 @@ double since(std::chrono::steady_clock::time_point t) {
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: benchmark_frame_field INPUT SIZE [SIZE ...]   (INPUT: surface file or builtin:NAME)\n");
+    std::fprintf(stderr, "usage: benchmark_frame_field INPUT SIZE [SIZE ...] [linear_tolerance=T] [energy_tolerance=T]\n"
+                         "       [aggregate_size=N] [repair_rounds=N] [trace]   (INPUT: surface file or builtin:NAME)\n");
     return 2;
   }
   const std::string input = argv[1];
   CGAL_ext::Frame_field_options options;
+  CGAL_ext::Singularity_repair_options repair_options; // as generate
   std::vector<double> sizes;
   for (int a = 2; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg.rfind("linear_tolerance=", 0) == 0) options.linear_tolerance = std::atof(arg.c_str() + 17);
     else if (arg.rfind("energy_tolerance=", 0) == 0) options.energy_tolerance = std::atof(arg.c_str() + 17);
     else if (arg.rfind("aggregate_size=", 0) == 0) options.aggregate_size = std::atoi(arg.c_str() + 15);
+    else if (arg.rfind("repair_rounds=", 0) == 0) repair_options.max_further_rounds = std::atoi(arg.c_str() + 14);
     else if (arg == "trace")
       options.iteration_progress = [](const std::string& stage, int it, double value) {
         if (it % 10 == 0) std::printf("%8s %s %d: %.8g\n", "", stage.c_str(), it, value);
@@ -66,8 +69,9 @@ int main(int argc, char** argv) {
               input.c_str(), tbb::info::default_concurrency());
   std::printf("%8s %9s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s %9s %8s\n", "size", "tets", "Mesh_3", "build", "setup",
               "transp", "linear", "project", "refine", "repair", "singul", "total*", "us/tet*", "peak GB");
-  std::printf("linear_tolerance %g, energy_tolerance %g, aggregate_size %d\n", options.linear_tolerance,
-              options.energy_tolerance, options.aggregate_size);
+  std::printf("linear_tolerance %g, energy_tolerance %g, aggregate_size %d; repair: at most %d further rounds\n",
+              options.linear_tolerance, options.energy_tolerance, options.aggregate_size,
+              repair_options.max_further_rounds);
   for (const double size : sizes) {
     CGAL_ext::Tetrahedralize_options mo;
     mo.size = size;
@@ -96,7 +100,7 @@ int main(int argc, char** argv) {
     const double t_build = since(t);
     CGAL_ext::Frame_field_3<Field> ff(field);
     const CGAL_ext::Frame_field_statistics& st = ff.compute(options);
-    const CGAL_ext::Singularity_repair_report repair = CGAL_ext::repair_singularities(ff); // as generate
+    const CGAL_ext::Singularity_repair_report repair = CGAL_ext::repair_singularities(ff, repair_options);
     t = std::chrono::steady_clock::now();
     const auto sing = CGAL_ext::singular_edges(ff);
     const double t_sing = since(t);
@@ -106,11 +110,11 @@ int main(int argc, char** argv) {
                 st.seconds_projection, st.seconds_refinement, repair.seconds, t_sing, total,
                 1e6 * total / double(ff.size()), peak_gb());
     std::printf("%8s CG %d (residual %.1e; coarse: %d on %zu aggregates), L-BFGS %d, energy %.4g -> %.4g, %zu singular edges (repair: %zu -> %zu "
-                "non-meshable, %zu of %zu regions kept), boundary error mean %.3g max %.3g deg\n",
+                "non-meshable, %zu rounds, %zu of %zu regions kept), boundary error mean %.3g max %.3g deg\n",
                 "", st.linear_iterations, st.linear_residual, st.coarse_iterations, st.coarse_unknowns / 9,
                 st.refinement_iterations, st.projected_energy,
                 st.smoothness_energy, sing.size(), repair.non_meshable_before, repair.non_meshable_after,
-                repair.regions_accepted, repair.regions_tried, st.boundary_error_mean_deg, st.boundary_error_max_deg);
+                repair.rounds, repair.regions_accepted, repair.regions_tried, st.boundary_error_mean_deg, st.boundary_error_max_deg);
     std::fflush(stdout);
   }
   std::printf("\n* total: from the mesh to the singular edges (triangulation, metric, frame field, repair of\n"
