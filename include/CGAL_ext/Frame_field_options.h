@@ -197,9 +197,11 @@ struct Singularity_repair_options {
   /// seeds every round). They stop early when a whole turn of
   /// `further_radii` kept no region. Each round starts from the frames the
   /// previous ones left, so a defect that moved or shrank is attacked again
-  /// from there; measured (doc/benchmarks.md): CGAL's anchor 6 -> 1
-  /// non-meshable edges, TetGen's anchor 9 -> 4, TetGen's fandisk 1 -> 0.
-  /// They cost time only where non-meshable edges remain. 0 turns them off.
+  /// from there. Measured with `metric-frames generate` (doc/benchmarks.md),
+  /// non-meshable edges left by the repair without and with them: CGAL's
+  /// anchor 7 and 2, TetGen's anchor 12 and 0, TetGen's fandisk 1 and 0.
+  /// They cost time only where non-meshable edges remain (at 10^6
+  /// tetrahedra 43 s, for 19 -> 8). 0 turns them off.
   int max_further_rounds = 8;
   /// The radii of the further rounds, taken in turn.
   std::vector<int> further_radii = {3, 2};
