@@ -345,6 +345,16 @@ TEST_CASE("generate rejects bad input with a clear message", "[cli][generate]") 
     CHECK(r.exit_code == 2);
     CHECK(r.err.find("--no-repair excludes --repair-restarts") != std::string::npos);
   }
+  SECTION("repair rounds that are not a whole number, or without the repair") {
+    for (const char* n : {"-1", "2.5", "many"}) {
+      const Run r = run("generate " + cube + " --repair-rounds " + n + " -o " + out);
+      CHECK(r.exit_code == 2);
+      CHECK(r.err.find("--repair-rounds") != std::string::npos);
+    }
+    const Run r = run("generate " + cube + " --no-repair --repair-rounds 2 -o " + out);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find("--no-repair excludes --repair-rounds") != std::string::npos);
+  }
   SECTION("a hex size so small that the scaled metric overflows") {
     const Run r = run("generate " + cube + " --metric-const '1e300 0 1e300 0 0 1e300' --hex-size 1e-100 -o " + out);
     CHECK(r.exit_code == 1);
@@ -564,6 +574,33 @@ std::string scaled_mesh(const std::string& file, int e, const std::string& name)
 // field (the same energies, alignment, singularities), with every length
 // scaled exactly; a mesh whose size double cannot handle is refused before
 // any work, naming the file and the size.
+TEST_CASE("generate's --repair-rounds reaches the repair: its further rounds remove edges the first three leave",
+          "[cli][generate][repair]") {
+  // Without restarts in the second round, the first three rounds leave
+  // non-meshable edges on blobby (2 with GCC -O3); the further rounds go on.
+  std::map<int, nlohmann::json> report;
+  for (int rounds : {0, 8}) {
+    const auto out = work / ("blobby_rounds_" + std::to_string(rounds));
+    const Run r = run("generate builtin:blobby --repair-restarts 0 --repair-rounds " + std::to_string(rounds) +
+                      " -o " + out.string());
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    report[rounds] = read_report(out);
+  }
+  CHECK(number(report[0], "/repair/non_meshable_before") == number(report[8], "/repair/non_meshable_before"));
+  CHECK(number(report[0], "/repair/rounds") == 3);
+  CHECK(number(report[0], "/repair/regions_from_restarts") == 0);
+  if (number(report[0], "/repair/non_meshable_after") == 0) { // other last bits: nothing left to go on with
+    CHECK(number(report[8], "/repair/rounds") == 3);
+    CHECK(number(report[8], "/repair/non_meshable_after") == 0);
+    return;
+  }
+  CHECK(number(report[8], "/repair/rounds") > 3);
+  CHECK(number(report[8], "/repair/rounds") <= 11);
+  CHECK(number(report[8], "/repair/non_meshable_after") < number(report[0], "/repair/non_meshable_after"));
+  CHECK(number(report[8], "/repair/regions_from_restarts") > 0); // only the further rounds restart
+}
+
 TEST_CASE("generate does not depend on the unit of length and refuses sizes beyond 1e60", "[cli][generate]") {
   const std::string gmsh = data_dir + "/gmsh_box_with_hole.mesh";
   std::map<int, nlohmann::json> report;
