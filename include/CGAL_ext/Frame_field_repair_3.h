@@ -367,6 +367,10 @@ private:
 /// `singular_curve_direction_span + 1` rings of it): of all its starts it
 /// keeps the frames with the fewest (the lowest smoothness energy among
 /// equals) if fewer than before, and is restored bit for bit otherwise.
+/// After the rounds of `Singularity_repair_options::radii`, further rounds
+/// (`max_further_rounds`, `further_radii`, `further_restarts`) go on from
+/// the frames the previous ones left while non-meshable edges remain, until
+/// a whole turn of their radii keeps nothing.
 /// Only the edges within `singular_curve_direction_span + 1`
 /// rings of the regions can change type; they are typed from the edges
 /// within `singular_curve_direction_span` more rings (the matchings are
@@ -382,6 +386,8 @@ private:
 ///        place and its statistics updated
 /// \param options the options
 /// \returns what was done
+/// \throws std::invalid_argument for a radius below 1, a negative count of
+///         restarts or rounds, or a restart angle outside [0, 180] degrees
 template <class Frame_field>
 Singularity_repair_report repair_singularities(Frame_field& ff, const Singularity_repair_options& options = {}) {
   auto positive = [](const std::vector<int>& radii) {
