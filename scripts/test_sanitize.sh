@@ -23,6 +23,10 @@ export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
 excluded='walk vs reference: (nearly degenerate|rounded segments|Delaunay of cospherical|non-convex and non-manifold|Kuhn grids|near-degenerate|jittered grids|CGAL Delaunay)'
 excluded+='|the tolerance is honoured|Magnus needs far fewer|the coarse level of the initialisation'
 excluded+='|reference: reversal symmetry|from 1e-300 I to 1e300 I'
+# Also left out: the CLI's --repair-rounds wiring (two generate runs on
+# blobby, 280 s here against 2.5 s in the normal build); the repair's own
+# further-rounds test runs here.
+excluded+="|--repair-rounds reaches the repair"
 ctest --test-dir build-sanitize --output-on-failure --timeout 900 -j2 -E "$excluded"
 echo "[sanitize] build and tests: $(( $(date +%s) - start )) s" >&2
 # A fixed seed: the same run on every machine.
