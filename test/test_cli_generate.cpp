@@ -335,25 +335,17 @@ TEST_CASE("generate rejects bad input with a clear message", "[cli][generate]") 
       CHECK(r.err.find("--hex-size") != std::string::npos);
     }
   }
-  SECTION("repair restarts that are not a whole number, or without the repair") {
-    for (const char* n : {"-1", "1.5", "x"}) {
-      const Run r = run("generate " + cube + " --repair-restarts " + n + " -o " + out);
+  SECTION("repair restarts and rounds that are not whole numbers, or without the repair") {
+    for (const std::string option : {"--repair-restarts", "--repair-rounds"}) {
+      for (const char* n : {"-1", "1.5", "x"}) {
+        const Run r = run("generate " + cube + " " + option + " " + n + " -o " + out);
+        CHECK(r.exit_code == 2);
+        CHECK(r.err.find(option) != std::string::npos);
+      }
+      const Run r = run("generate " + cube + " --no-repair " + option + " 2 -o " + out);
       CHECK(r.exit_code == 2);
-      CHECK(r.err.find("--repair-restarts") != std::string::npos);
+      CHECK(r.err.find("--no-repair excludes " + option) != std::string::npos);
     }
-    const Run r = run("generate " + cube + " --no-repair --repair-restarts 2 -o " + out);
-    CHECK(r.exit_code == 2);
-    CHECK(r.err.find("--no-repair excludes --repair-restarts") != std::string::npos);
-  }
-  SECTION("repair rounds that are not a whole number, or without the repair") {
-    for (const char* n : {"-1", "2.5", "many"}) {
-      const Run r = run("generate " + cube + " --repair-rounds " + n + " -o " + out);
-      CHECK(r.exit_code == 2);
-      CHECK(r.err.find("--repair-rounds") != std::string::npos);
-    }
-    const Run r = run("generate " + cube + " --no-repair --repair-rounds 2 -o " + out);
-    CHECK(r.exit_code == 2);
-    CHECK(r.err.find("--no-repair excludes --repair-rounds") != std::string::npos);
   }
   SECTION("a hex size so small that the scaled metric overflows") {
     const Run r = run("generate " + cube + " --metric-const '1e300 0 1e300 0 0 1e300' --hex-size 1e-100 -o " + out);
