@@ -314,17 +314,37 @@ public:
     /// Each frame transported from its neighbour nearest to the outside
     /// (breadth-first through faces from all the fixed neighbours at once),
     /// so that the mismatches start on the seams where the fronts meet.
-    propagated
+    propagated,
+    /// The frames the tetrahedra have (e.g. a start that `start_frames()`
+    /// made and the caller saved, to turn it by several seeds without
+    /// solving for it again).
+    current
   };
+
+  /// Sets the frames of some tetrahedra to a start of `reoptimize()`, all
+  /// others fixed, without optimising: `reoptimize(tets, start, seed, a)` is
+  /// `start_frames(tets, start)` then `reoptimize(tets, Reoptimize_start::current, seed, a)`.
+  /// The statistics are not updated.
+  /// \param tets the tetrahedron indices (distinct)
+  /// \param start how the frames start (`current` leaves them)
+  void start_frames(const std::vector<std::size_t>& tets, Reoptimize_start start) {
+    prepare(opt_);
+    if (tets.empty() || start == Reoptimize_start::current) return;
+    const Active_set set = mark(tets);
+    if (start != Reoptimize_start::propagated || !propagate(tets, local_)) relax(tets, set, local_);
+    unmark(tets);
+  }
 
   /// Re-optimises the frames of some tetrahedra, all others fixed, as
   /// `compute()` does globally: a start (see `Reoptimize_start`), turned
   /// if `seed` is not 0, with the hard constraints applied, then L-BFGS on
   /// their rotations. The result depends on the surrounding frames, the
   /// start and the seed, not on the previous frames of the tetrahedra given
-  /// nor on the thread count. The statistics are not updated (see
-  /// `update_statistics()`). Used by `repair_singularities()`, which
-  /// restarts from several seeds to leave a local minimum.
+  /// (except from the `current` start) nor on the thread count. The
+  /// statistics are not updated (see `update_statistics()`). Time and
+  /// memory go with the tetrahedra given, not with the mesh. Used by
+  /// `repair_singularities()`, which restarts from several seeds to leave a
+  /// local minimum.
   /// \param tets the tetrahedron indices to re-optimise (distinct)
   /// \param start how the frames start
   /// \param seed if not 0, each start frame is turned by a pseudo-random
@@ -335,16 +355,9 @@ public:
   /// \returns the L-BFGS iterations
   int reoptimize(const std::vector<std::size_t>& tets, Reoptimize_start start = Reoptimize_start::relaxed,
                  std::uint64_t seed = 0, double max_angle = 0) {
-    prepare(opt_);
     const std::size_t m = tets.size();
     if (m == 0) return 0;
-    Active_set set;
-    set.list = &tets;
-    set.n = m;
-    set.marked.assign(size(), 0);
-    std::vector<std::size_t> local(size(), std::size_t(-1));
-    for (std::size_t k = 0; k < m; ++k) set.marked[tets[k]] = 1, local[tets[k]] = k;
-    if (start != Reoptimize_start::propagated || !propagate(tets, local)) relax(tets, set, local);
+    start_frames(tets, start);
     if (seed != 0)
       internal::parallel_for_each_index(m, [&](std::size_t k) {
         q_[tets[k]] = (internal::seeded_rotation(seed, tets[k], max_angle) * q_[tets[k]]).normalized();
@@ -352,7 +365,10 @@ public:
     internal::parallel_for_each_index(m, [&](std::size_t k) { constrain(tets[k]); });
     int evaluations = 0;
     bool limit = false;
-    return lbfgs(set, evaluations, limit, nullptr);
+    const Active_set set = mark(tets);
+    const int iterations = lbfgs(set, evaluations, limit, nullptr);
+    unmark(tets);
+    return iterations;
   }
 
   /// The rotation `R_i` as the unit quaternion the optimiser holds (any
@@ -505,11 +521,27 @@ private:
   // fixed, their faces with the list counted once, from the list's side).
   struct Active_set {
     const std::vector<std::size_t>* list = nullptr; // null: all
-    std::vector<char> marked;                        // per tetrahedron, with a list
+    const std::vector<char>* marked = nullptr;      // per tetrahedron, with a list
     std::size_t n = 0;
     std::size_t tet(std::size_t k) const { return list ? (*list)[k] : k; }
-    bool active(std::int64_t j) const { return !list || marked[std::size_t(j)]; }
+    bool active(std::int64_t j) const { return !list || (*marked)[std::size_t(j)]; }
   };
+
+  // The active set of a list, with marked_ and local_ (the position in the
+  // list) set for its tetrahedra; unmark() clears them, so that a local
+  // re-optimisation costs time in proportion to its list, not to the mesh.
+  Active_set mark(const std::vector<std::size_t>& tets) {
+    if (marked_.size() != size()) marked_.assign(size(), 0), local_.assign(size(), std::size_t(-1));
+    for (std::size_t k = 0; k < tets.size(); ++k) marked_[tets[k]] = 1, local_[tets[k]] = k;
+    Active_set set;
+    set.list = &tets;
+    set.marked = &marked_;
+    set.n = tets.size();
+    return set;
+  }
+  void unmark(const std::vector<std::size_t>& tets) {
+    for (std::size_t i : tets) marked_[i] = 0, local_[i] = std::size_t(-1);
+  }
 
   void relax(const std::vector<std::size_t>& tets, const Active_set& set, const std::vector<std::size_t>& local);
 
@@ -542,6 +574,8 @@ private:
   Energy e_;
   std::vector<Sh_vector> s_;
   std::vector<Eigen::Quaterniond> q_;
+  std::vector<char> marked_;       // scratch of mark(): all 0 between calls
+  std::vector<std::size_t> local_; // scratch of mark(): all size_t(-1) between calls
   bool prepared_ = false;
 };
 

@@ -228,14 +228,30 @@ private:
     }
     std::sort(inner.begin(), inner.end());
     inner.erase(std::unique(inner.begin(), inner.end()), inner.end());
-    const std::vector<std::size_t> examined = region(seeds, reach + singular_curve_direction_span);
     for (std::size_t i : inner) inner_[i] = 1;
     auto is_inner = [&](const std::array<std::size_t, 2>& e) {
       return tet_around(e, [&](std::size_t i) { return inner_[i] != 0; }) < ff_.size();
     };
+    // The examination types the edges of `examined` as singular_edges() on
+    // it would. Those of no tetrahedron of the batch keep their holonomy
+    // while the batch is re-optimised: found once (`outside`), and only the
+    // batch's own edges again after each start.
+    std::vector<internal::Singular_edge_holonomy> outside;
+    {
+      const std::vector<std::size_t> examined = region(seeds, reach + singular_curve_direction_span);
+      for (std::size_t i : tets) in_[i] = 1;
+      for (auto& h : singular_edge_holonomies(ff_, matchings_, &examined, nullptr))
+        if (tet_around(h.edge.vertices, [&](std::size_t i) { return in_[i] != 0; }) == ff_.size())
+          outside.push_back(std::move(h));
+      for (std::size_t i : tets) in_[i] = 0;
+    }
     auto examine = [&] {
+      const auto own = singular_edge_holonomies(ff_, matchings_, &tets, nullptr);
+      std::vector<internal::Singular_edge_holonomy> all(outside.size() + own.size());
+      std::merge(outside.begin(), outside.end(), own.begin(), own.end(), all.begin(),
+                 [](const auto& a, const auto& b) { return a.edge.vertices < b.edge.vertices; });
       Edges out;
-      for (const auto& e : non_meshable_edges(singular_edges(ff_, matchings_, &examined)))
+      for (const auto& e : non_meshable_edges(type_singular_edges(all)))
         if (is_inner(e)) out.push_back(e);
       return out;
     };
@@ -283,7 +299,11 @@ private:
     std::vector<Eigen::Quaterniond> saved(tets.size());
     for (std::size_t k = 0; k < tets.size(); ++k) saved[k] = ff_.rotation_quaternion(tets[k]);
 
-    const int starts = 2 + std::max(0, restarts);
+    // The relaxed start of `relaxed_tets`, solved once for all the restarts
+    // from it (the open regions change rarely).
+    std::vector<std::size_t> relaxed_tets;
+    std::vector<Eigen::Quaterniond> relaxed;
+    const int starts = 2 + restarts;
     for (int s = 0; s < starts; ++s) {
       std::vector<std::size_t> open, open_tets; // the regions still short of zero
       for (std::size_t r = 0; r < m; ++r)
@@ -292,8 +312,19 @@ private:
       for (std::size_t r : open) open_tets.insert(open_tets.end(), regions[batch[r]].begin(), regions[batch[r]].end());
       // Restart seeds differ between rounds, starts and batches (by their first tetrahedron).
       const std::uint64_t seed = s < 2 ? 0 : split_seed(std::uint64_t(round), std::uint64_t(s), tets.front());
-      ff_.reoptimize(open_tets, s == 1 ? Start::propagated : Start::relaxed, seed,
-                     options_.restart_angle_deg * M_PI / 180);
+      Start start = Start::propagated;
+      if (s != 1) {
+        if (open_tets != relaxed_tets) {
+          ff_.start_frames(open_tets, Start::relaxed);
+          relaxed_tets = open_tets;
+          relaxed.resize(open_tets.size());
+          for (std::size_t k = 0; k < open_tets.size(); ++k) relaxed[k] = ff_.rotation_quaternion(open_tets[k]);
+        } else {
+          for (std::size_t k = 0; k < open_tets.size(); ++k) ff_.set_rotation(open_tets[k], relaxed[k]);
+        }
+        start = Start::current;
+      }
+      ff_.reoptimize(open_tets, start, seed, options_.restart_angle_deg * M_PI / 180);
       matchings_.update(ff_, open_tets);
       const std::vector<std::size_t> now = count(examine());
       for (std::size_t r : open) {

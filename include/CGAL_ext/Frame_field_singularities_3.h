@@ -155,76 +155,30 @@ inline std::array<std::size_t, 2> curve_stretch(const std::vector<std::array<std
 /// along its singular curve to estimate the curve's direction (see there).
 constexpr int singular_curve_direction_span = 2;
 
-/// \ingroup PkgCGALExtFrames
-/// Finds and types the singular edges of a frame field from its face matchings.
-///
-/// For each interior edge (no incident cell outside the domain) with cells
-/// `c_0, ..., c_{n-1}` around it, `c_0` the one of smallest index and the
-/// loop turning positively about the edge from its smaller vertex index to
-/// the larger, the holonomy is
-/// the exact product `P = G_{n-1} ... G_0` of the face matchings `G_k` from
-/// `c_k` to `c_{k+1}` (`Frame_field_matchings_3`, transports included). The
-/// edge is regular iff `P = I`. Otherwise `P` is a rotation by 90, 120 or 180
-/// degrees about an axis `a` of the frame space of `c_0`; in space it is the
-/// turn `R_0 P R_0^T` about `R_0 a`.
-///
-/// The singular edges form curves that zigzag along the mesh edges, so a
-/// quarter turn is compared with the direction `d` of its curve rather than
-/// with the edge alone: the chord from the vertex reached by following the
-/// curve `singular_curve_direction_span` edges back to the one reached as
-/// many edges forward (the chain stops at nodes, vertices with other than two
-/// singular edges, and on a closed loop before the two sides meet). The loop around the edge links the curve once, with the
-/// sign of the edge traversed along `d`: about `d`, the holonomy is `P` or
-/// `P^{-1}` by that sign (an exact test; an edge may zigzag backwards or
-/// across `d`). In the metric (`A` at the edge's midpoint in `c_0`):
-/// - a quarter turn whose axis is the frame axis closest to `A d` (the one
-///   along which an integer-grid map lays the curve) is `plus_quarter` if it
-///   turns positively about `d` and `minus_quarter` otherwise;
-/// - a quarter turn about another frame axis is `quarter_across`: the curve
-///   runs across its own turn's axis, and no hex edge can follow it;
-/// - half turns are `half`, thirds of a turn are `third`.
-///
-/// A different starting cell conjugates `P` by the matchings and moves the
-/// axis with the frames; a reversed loop inverts `P` and reverses `t`; so
-/// the type and `turn_deg` do not depend on either, except through the
-/// nearest frame axis to `A d`: the frames of the cells around an edge
-/// differ by small rotations, and a curve running about halfway between two
-/// axes may be nearest to different ones in different cells. Hence the
-/// fixed `c_0`, so that the type depends on the field alone (not on how
-/// CGAL's iterator represents the edge, which depends on cell addresses).
-///
-/// The edges are returned sorted by their vertex indices (deterministic).
-///
-/// \tparam Frame_field a `Frame_field_3` after `compute()`
-/// \param ff the frame field
-/// \param matchings its face matchings
-/// \param tets if given, only the edges of these tetrahedra are examined
-///        (and the curves' directions are taken along the singular edges
-///        among them): an edge whose curve stays within
-///        `singular_curve_direction_span` edges of the set gets the same type
-///        as from all edges
-/// \param positions if given, the vertices' positions by vertex index, in
-///        place of the mesh's (as `straighten_singular_curves()` returns
-///        them; one per vertex index at least): the holonomies and the
-///        loops' senses are the mesh's, the curves' directions, the edges'
-///        midpoints and the metric there those of these positions (the
-///        metric at a midpoint is taken at the same barycentric coordinates)
-/// \returns the singular edges (regular edges are not listed)
+namespace internal {
+
+// Pass 1 of singular_edges() for one singular edge: its holonomy and what
+// its typing needs.
+struct Singular_edge_holonomy {
+  Singular_edge edge;                   // vertices, monodromy, loop size, midpoint
+  Eigen::Matrix3d P, frame_from_metric; // the loop product; R_0^T A
+  Eigen::Vector3d t;                    // the edge, oriented by the circulation
+  std::array<Eigen::Vector3d, 2> p;     // positions of edge.vertices
+};
+
+// Pass 1 of singular_edges() (same parameters): the singular edges among
+// those examined, sorted by their vertex indices. Each depends only on the
+// frames of the tetrahedra around it.
 template <class Frame_field>
-std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_field_matchings_3<Frame_field>& matchings,
-                                          const std::vector<std::size_t>* tets = nullptr,
-                                          const std::vector<Eigen::Vector3d>* positions = nullptr) {
+std::vector<Singular_edge_holonomy> singular_edge_holonomies(const Frame_field& ff,
+                                                             const Frame_field_matchings_3<Frame_field>& matchings,
+                                                             const std::vector<std::size_t>* tets,
+                                                             const std::vector<Eigen::Vector3d>* positions) {
   using Cell_handle = typename Frame_field::Cell_handle;
   using Edge = typename Frame_field::Triangulation::Edge;
   const auto& field = ff.metric_field();
   const auto& tr = field.triangulation();
-  // Pass 1: the holonomy of every interior edge, and what the typing needs.
-  struct Found {
-    Singular_edge edge;
-    Eigen::Matrix3d P, frame_from_metric; // R_0^T A
-    Eigen::Vector3d t;                    // the edge, oriented by the circulation
-    std::array<Eigen::Vector3d, 2> p;     // positions of edge.vertices
-  };
+  using Found = Singular_edge_holonomy;
   std::vector<Found> found;
   std::vector<Cell_handle> loop;
   auto examine = [&](const Edge& e) {
@@ -320,8 +274,12 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_fie
   }
   std::sort(found.begin(), found.end(),
             [](const Found& a, const Found& b) { return a.edge.vertices < b.edge.vertices; });
+  return found;
+}
 
-  // Pass 2: the direction of each edge's curve, and the types.
+// Pass 2 of singular_edges(): the direction of each edge's curve (along the
+// edges given, sorted by their vertices), and the types.
+inline std::vector<Singular_edge> type_singular_edges(const std::vector<Singular_edge_holonomy>& found) {
   std::vector<std::array<std::size_t, 2>> ends(found.size());
   std::map<std::size_t, Eigen::Vector3d> position;
   for (std::size_t k = 0; k < found.size(); ++k) {
@@ -332,8 +290,8 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_fie
   std::vector<Singular_edge> out;
   out.reserve(found.size());
   for (std::size_t k = 0; k < found.size(); ++k) {
-    Found& f = found[k];
-    Singular_edge& s = f.edge;
+    const Singular_edge_holonomy& f = found[k];
+    Singular_edge s = f.edge;
     const std::array<std::size_t, 2> stretch =
         internal::curve_stretch(ends, incident, k, singular_curve_direction_span);
     const std::size_t back = stretch[0], ahead = stretch[1];
@@ -376,6 +334,70 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_fie
     out.push_back(s);
   }
   return out;
+}
+
+} // namespace internal
+
+/// \ingroup PkgCGALExtFrames
+/// Finds and types the singular edges of a frame field from its face matchings.
+///
+/// For each interior edge (no incident cell outside the domain) with cells
+/// `c_0, ..., c_{n-1}` around it, `c_0` the one of smallest index and the
+/// loop turning positively about the edge from its smaller vertex index to
+/// the larger, the holonomy is
+/// the exact product `P = G_{n-1} ... G_0` of the face matchings `G_k` from
+/// `c_k` to `c_{k+1}` (`Frame_field_matchings_3`, transports included). The
+/// edge is regular iff `P = I`. Otherwise `P` is a rotation by 90, 120 or 180
+/// degrees about an axis `a` of the frame space of `c_0`; in space it is the
+/// turn `R_0 P R_0^T` about `R_0 a`.
+///
+/// The singular edges form curves that zigzag along the mesh edges, so a
+/// quarter turn is compared with the direction `d` of its curve rather than
+/// with the edge alone: the chord from the vertex reached by following the
+/// curve `singular_curve_direction_span` edges back to the one reached as
+/// many edges forward (the chain stops at nodes, vertices with other than two
+/// singular edges, and on a closed loop before the two sides meet). The loop around the edge links the curve once, with the
+/// sign of the edge traversed along `d`: about `d`, the holonomy is `P` or
+/// `P^{-1}` by that sign (an exact test; an edge may zigzag backwards or
+/// across `d`). In the metric (`A` at the edge's midpoint in `c_0`):
+/// - a quarter turn whose axis is the frame axis closest to `A d` (the one
+///   along which an integer-grid map lays the curve) is `plus_quarter` if it
+///   turns positively about `d` and `minus_quarter` otherwise;
+/// - a quarter turn about another frame axis is `quarter_across`: the curve
+///   runs across its own turn's axis, and no hex edge can follow it;
+/// - half turns are `half`, thirds of a turn are `third`.
+///
+/// A different starting cell conjugates `P` by the matchings and moves the
+/// axis with the frames; a reversed loop inverts `P` and reverses `t`; so
+/// the type and `turn_deg` do not depend on either, except through the
+/// nearest frame axis to `A d`: the frames of the cells around an edge
+/// differ by small rotations, and a curve running about halfway between two
+/// axes may be nearest to different ones in different cells. Hence the
+/// fixed `c_0`, so that the type depends on the field alone (not on how
+/// CGAL's iterator represents the edge, which depends on cell addresses).
+///
+/// The edges are returned sorted by their vertex indices (deterministic).
+///
+/// \tparam Frame_field a `Frame_field_3` after `compute()`
+/// \param ff the frame field
+/// \param matchings its face matchings
+/// \param tets if given, only the edges of these tetrahedra are examined
+///        (and the curves' directions are taken along the singular edges
+///        among them): an edge whose curve stays within
+///        `singular_curve_direction_span` edges of the set gets the same type
+///        as from all edges
+/// \param positions if given, the vertices' positions by vertex index, in
+///        place of the mesh's (as `straighten_singular_curves()` returns
+///        them; one per vertex index at least): the holonomies and the
+///        loops' senses are the mesh's, the curves' directions, the edges'
+///        midpoints and the metric there those of these positions (the
+///        metric at a midpoint is taken at the same barycentric coordinates)
+/// \returns the singular edges (regular edges are not listed)
+template <class Frame_field>
+std::vector<Singular_edge> singular_edges(const Frame_field& ff, const Frame_field_matchings_3<Frame_field>& matchings,
+                                          const std::vector<std::size_t>* tets = nullptr,
+                                          const std::vector<Eigen::Vector3d>* positions = nullptr) {
+  return internal::type_singular_edges(internal::singular_edge_holonomies(ff, matchings, tets, positions));
 }
 
 /// \ingroup PkgCGALExtFrames

@@ -63,7 +63,7 @@ inline void Frame_field_3<Metric_field>::
     const std::size_t i = tets[k];
     if (e_.constraint_of[i] >= 0) b[k] = e_.constraints[e_.constraint_of[i]].b;
     for (int f = 0; f < 4; ++f)
-      if (e_.links[i].nb[f] >= 0 && !set.marked[e_.links[i].nb[f]]) b[k] += e_.links[i].w[f] * e_.neighbour_sh(i, f, s_);
+      if (e_.links[i].nb[f] >= 0 && !set.active(e_.links[i].nb[f])) b[k] += e_.links[i].w[f] * e_.neighbour_sh(i, f, s_);
   });
   auto apply = [&](const std::vector<Sh_vector>& v, std::vector<Sh_vector>& y) {
     internal::parallel_for_each_index(m, [&](std::size_t k) {
@@ -71,7 +71,7 @@ inline void Frame_field_3<Metric_field>::
       const auto& L = e_.links[i];
       Sh_vector r = e_.diagonal[i] * v[k];
       for (int f = 0; f < 4; ++f) {
-        if (L.nb[f] < 0 || !set.marked[L.nb[f]]) continue;
+        if (L.nb[f] < 0 || !set.active(L.nb[f])) continue;
         const Sh_vector& vj = v[local[L.nb[f]]];
         r -= L.w[f] * (L.identity[f] ? vj : Sh_vector(rotate_sh(L.T_in[f], vj)));
       }
