@@ -330,6 +330,65 @@ TEST_CASE("the result does not depend on the number of threads", "[frame_field]"
   CHECK(same);
 }
 
+TEST_CASE("the optimiser's gradient matches central differences of its objective, over all frames and over a list",
+          "[frame_field][gradients]") {
+  // A varying metric (every interior transport a rotation), soft boundary
+  // terms, and frames turned away from the optimum so that every term has a
+  // gradient. Each face is evaluated once, by one of its two tetrahedra,
+  // which also gives the other its gradient: a wrong sign or transpose there
+  // breaks the match on every interior tetrahedron.
+  testing::Test_mesh m = testing::jittered_kuhn_grid(3, 11);
+  auto mesh = make_mesh(m);
+  const Field field(mesh->tr, [](const Tr::Point& p) {
+    return CGAL_ext::testing::flat_metric::metric(Eigen::Vector3d(p.x(), p.y(), p.z()) / 6.0);
+  });
+  Frame_field_options options;
+  options.hard_boundary = false; // no projection: every axis of every tetrahedron compared
+  Frames ff(field);
+  const Frame_field_statistics& st = ff.compute(options);
+  REQUIRE(st.identity_transports < st.interior_faces / 10);
+  std::uint64_t state = 12345;
+  auto uniform = [&] { // deterministic, in [-1, 1)
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return double(state >> 11) / double(1ULL << 52) - 1;
+  };
+  for (std::size_t i = 0; i < ff.size(); ++i) {
+    const Eigen::Vector3d w(uniform(), uniform(), uniform());
+    ff.set_rotation(i, (Eigen::Quaterniond(Eigen::AngleAxisd(0.4 * w.norm(), w.normalized())) *
+                        ff.rotation_quaternion(i)).normalized());
+  }
+  std::vector<std::size_t> list; // every third tetrahedron, so that active and fixed neighbours mix
+  for (std::size_t i = 0; i < ff.size(); i += 3) list.push_back(i);
+  for (const std::vector<std::size_t>& tets : {std::vector<std::size_t>{}, list}) {
+    std::vector<Eigen::Vector3d> g;
+    const double E = ff.refinement_objective(tets, g);
+    REQUIRE(g.size() == (tets.empty() ? ff.size() : tets.size()));
+    double worst = 0, largest = 0;
+    std::vector<Eigen::Vector3d> ignored;
+    const double h = 1e-5;
+    for (std::size_t k = 0; k < g.size(); k += 5) {
+      const std::size_t i = tets.empty() ? k : tets[k];
+      const Eigen::Quaterniond q = ff.rotation_quaternion(i);
+      for (int a = 0; a < 3; ++a) {
+        double side[2];
+        for (int sgn = 0; sgn < 2; ++sgn) {
+          ff.set_rotation(i, (Eigen::Quaterniond(Eigen::AngleAxisd(sgn ? -h : h, Eigen::Vector3d::Unit(a))) * q).normalized());
+          side[sgn] = ff.refinement_objective(tets, ignored);
+        }
+        ff.set_rotation(i, q);
+        const double fd = (side[0] - side[1]) / (2 * h);
+        worst = std::max(worst, std::abs(fd - g[k](a)));
+        largest = std::max(largest, std::abs(g[k](a)));
+      }
+    }
+    INFO((tets.empty() ? "all" : "list") << ": objective " << E << ", largest gradient entry " << largest
+                                         << ", worst difference " << worst);
+    CHECK(E > 0);
+    CHECK(largest > 1e-3 * E / double(ff.size()));
+    CHECK(worst < 1e-7 * largest);
+  }
+}
+
 TEST_CASE("singular edges: a twisted field on a grid has quarter-turn loops, matched exactly", "[frame_field]") {
   // Refinement from a field rotating by 90 degrees about z around the grid's
   // central vertical edge: the loop around it must be a +1/4 singularity

@@ -387,6 +387,29 @@ public:
     s_[i] = rotate_sh(q_[i], octahedral_reference_sh());
   }
 
+  /// The objective that the L-BFGS of `compute()` and `reoptimize()`
+  /// minimises, with the frames of the other tetrahedra fixed: the
+  /// smoothness terms of the faces of the tetrahedra given (each face once)
+  /// plus their soft boundary terms; and its gradient in their left rotation
+  /// increments `w` (`R <- exp([w]_x) R`), projected on the axes that the
+  /// hard constraints leave free. Its norm after `compute()` tells how far
+  /// from a stationary point the optimiser stopped.
+  /// \param tets the tetrahedron indices (distinct), or empty for all
+  /// \param gradient receives the gradient, one vector per tetrahedron of
+  ///        `tets` in its order (per tetrahedron index if `tets` is empty)
+  /// \returns the objective, in the units of `smoothness_energy()`
+  double refinement_objective(const std::vector<std::size_t>& tets, std::vector<Eigen::Vector3d>& gradient) {
+    prepare(opt_);
+    Active_set set;
+    set.n = size();
+    if (!tets.empty()) set = mark(tets);
+    gradient.assign(set.n, Eigen::Vector3d::Zero());
+    const double e = energy_and_gradient(set, &gradient);
+    if (!tets.empty()) unmark(tets);
+    for (Eigen::Vector3d& g : gradient) g = std::ldexp(1.0, e_.weight_exponent) * g;
+    return std::ldexp(e, e_.weight_exponent);
+  }
+
   /// Recomputes the smoothness energy, boundary alignment and
   /// orthonormality of the statistics from the current frames.
   void update_statistics() {
