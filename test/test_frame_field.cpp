@@ -17,7 +17,10 @@
 #include <catch2/catch.hpp>
 #include <tbb/global_control.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <set>
@@ -386,6 +389,36 @@ TEST_CASE("the optimiser's gradient matches central differences of its objective
     CHECK(E > 0);
     CHECK(largest > 1e-3 * E / double(ff.size()));
     CHECK(worst < 1e-7 * largest);
+  }
+}
+
+TEST_CASE("deterministic sums of terms: the bits of one block body adding them, on few blocks and many, any thread count",
+          "[frame_field]") {
+  // Terms of magnitudes from 1e-8 to 1e8 and zeros, so that any other order
+  // of the additions changes the last bits.
+  auto term = [](std::size_t i, int j) {
+    const std::uint64_t h = (i * 6364136223846793005ULL + std::uint64_t(j) * 1442695040888963407ULL) >> 20;
+    return h % 7 == 0 ? 0.0 : std::ldexp(double(h % 1000003), int(h % 53) - 46);
+  };
+  for (std::size_t n : {std::size_t(1), std::size_t(3000), internal::deterministic_few_blocks * internal::deterministic_block - 1,
+                        internal::deterministic_few_blocks * internal::deterministic_block + 5000}) {
+    const double reference = internal::deterministic_sum(n, [&](std::size_t first, std::size_t last) {
+      double s = 0;
+      for (std::size_t i = first; i < last; ++i)
+        for (int j = 0; j < 3; ++j) s += term(i, j);
+      return s;
+    });
+    for (int threads : {1, 2}) {
+      tbb::global_control c(tbb::global_control::max_allowed_parallelism, threads);
+      std::vector<double> written(n, 0);
+      const double sum = internal::deterministic_sum_of_terms<3>(n, [&](std::size_t i, std::array<double, 3>& t) {
+        for (int j = 0; j < 3; ++j) t[j] = term(i, j);
+        written[i] = 1;
+      });
+      INFO("n " << n << ", " << threads << " threads");
+      CHECK(sum == reference);
+      CHECK(std::count(written.begin(), written.end(), 1.0) == std::ptrdiff_t(n));
+    }
   }
 }
 

@@ -334,6 +334,27 @@ TEST_CASE("D is continuous through the gimbal lock and near pi", "[frames]") {
   }
 }
 
+TEST_CASE("a face's transport applied from its stored Euler angles is rotate_sh bit for bit", "[frames]") {
+  // The energy keeps each face's transport as the cosines and sines of its
+  // Euler angles (internal::Oct_euler_angles); the field must not depend on it.
+  Random r(17);
+  std::vector<Eigen::Quaterniond> qs = {Eigen::Quaterniond::Identity(), Eigen::Quaterniond(0, 0, 0, 1),
+                                        Eigen::Quaterniond(0, 1, 0, 0), Eigen::Quaterniond(std::sqrt(0.5), 0, std::sqrt(0.5), 0)};
+  for (int k = 0; k < 200; ++k) qs.push_back(Eigen::Quaterniond(r.rotation()));
+  for (int k = 0; k < 20; ++k) // near the gimbal lock: beta 1e-9 from 0 and from pi
+    for (double b : {1e-9, pi - 1e-9}) qs.push_back(Eigen::Quaterniond(rz(r.uniform(-pi, pi)) * ry(b) * rz(r.uniform(-pi, pi))));
+  int differ = 0;
+  for (const Eigen::Quaterniond& q : qs) {
+    CGAL_ext::Sh_vector s;
+    for (int i = 0; i < 9; ++i) s(i) = r.uniform(-1, 1);
+    const CGAL_ext::Sh_vector a = CGAL_ext::rotate_sh(q, s);
+    const CGAL_ext::Sh_vector b =
+        CGAL_ext::internal::oct_apply(CGAL_ext::internal::oct_euler(CGAL_ext::internal::oct_euler_angles(q)), s);
+    differ += !std::equal(a.data(), a.data() + 9, b.data());
+  }
+  CHECK(differ == 0);
+}
+
 TEST_CASE("generators: skew, commutators, exp(w.L) = D(exp([w]_x)), derivative of functions", "[frames]") {
   const auto& L = CGAL_ext::sh_generators();
   for (int k = 0; k < 3; ++k) CHECK((L[k] + L[k].transpose()).cwiseAbs().maxCoeff() == 0);

@@ -262,7 +262,7 @@ public:
   /// \param f a facet index in 0..3
   /// \returns the 3x3 rotation `T(j->i)`
   Eigen::Matrix3d transport_into(std::size_t i, int f) const {
-    return e_.links[i].identity[f] ? Eigen::Matrix3d::Identity() : e_.links[i].T_in[f].toRotationMatrix();
+    return e_.links[i].identity[f] ? Eigen::Matrix3d::Identity() : e_.transport_in[i][f].toRotationMatrix();
   }
   /// Half the smoothness energy density at tetrahedron `i`:
   /// `sum_f w_f |s_i - D(T(j->i)) s_j|^2 / 2` over its interior faces, divided

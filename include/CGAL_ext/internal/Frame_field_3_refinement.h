@@ -25,7 +25,7 @@ inline bool Frame_field_3<Metric_field>::
   std::vector<char> done(tets.size(), 0);
   std::vector<Eigen::Quaterniond> q(tets.size());
   auto reach = [&](std::size_t k, std::size_t i, int f, const Eigen::Quaterniond& from) {
-    q[k] = e_.links[i].identity[f] ? from : (e_.links[i].T_in[f] * from).normalized();
+    q[k] = e_.links[i].identity[f] ? from : (e_.transport_in[i][f] * from).normalized();
     done[k] = 1;
     queue.push_back(k);
   };
@@ -73,7 +73,7 @@ inline void Frame_field_3<Metric_field>::
       for (int f = 0; f < 4; ++f) {
         if (L.nb[f] < 0 || !set.active(L.nb[f])) continue;
         const Sh_vector& vj = v[local[L.nb[f]]];
-        r -= L.w[f] * (L.identity[f] ? vj : Sh_vector(rotate_sh(L.T_in[f], vj)));
+        r -= L.w[f] * (L.identity[f] ? vj : Sh_vector(internal::oct_apply(internal::oct_euler(L.T_in_euler[f]), vj)));
       }
       if (e_.constraint_of[i] >= 0) r += e_.constraints[e_.constraint_of[i]].B * v[k];
       y[k] = r;
@@ -93,36 +93,33 @@ inline void Frame_field_3<Metric_field>::
 template <class Metric_field>
 inline double Frame_field_3<Metric_field>::
     energy_and_gradient(const Active_set& set, std::vector<Eigen::Vector3d>* g) const {
-  return internal::deterministic_sum(set.n, [&](std::size_t first, std::size_t last) {
-    double e = 0;
-    for (std::size_t k = first; k < last; ++k) {
-      const std::size_t i = set.tet(k);
-      const auto& L = e_.links[i];
-      Sh_vector grad = Sh_vector::Zero();
-      for (int f = 0; f < 4; ++f) {
-        if (L.nb[f] < 0) continue;
-        const Sh_vector r = s_[i] - e_.neighbour_sh(i, f, s_);
-        // A face between two active tetrahedra is seen from both sides.
-        e += (set.active(L.nb[f]) ? 0.5 : 1.0) * L.w[f] * r.squaredNorm();
-        grad += (2 * L.w[f]) * r;
-      }
-      const std::int64_t c = e_.constraint_of[i];
-      if (c >= 0) {
-        const auto& C = e_.constraints[c];
-        const Sh_vector Bs = C.B * s_[i];
-        e += s_[i].dot(Bs) - 2 * C.b.dot(s_[i]) + C.c;
-        grad += 2 * (Bs - C.b);
-      }
-      if (g) {
-        Eigen::Vector3d gi = sh_rotation_jacobian(s_[i]).transpose() * grad;
-        if (opt_.hard_boundary && c >= 0) {
-          const auto& C = e_.constraints[c];
-          gi = C.axes == 2 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(gi.dot(C.d1) * C.d1);
-        }
-        (*g)[k] = gi;
-      }
+  // Per tetrahedron: its four faces' terms, then its boundary term.
+  return internal::deterministic_sum_of_terms<5>(set.n, [&](std::size_t k, std::array<double, 5>& e) {
+    const std::size_t i = set.tet(k);
+    const auto& L = e_.links[i];
+    Sh_vector grad = Sh_vector::Zero();
+    for (int f = 0; f < 4; ++f) {
+      if (L.nb[f] < 0) continue;
+      const Sh_vector r = s_[i] - e_.neighbour_sh(i, f, s_);
+      // A face between two active tetrahedra is seen from both sides.
+      e[f] = (set.active(L.nb[f]) ? 0.5 : 1.0) * L.w[f] * r.squaredNorm();
+      grad += (2 * L.w[f]) * r;
     }
-    return e;
+    const std::int64_t c = e_.constraint_of[i];
+    if (c >= 0) {
+      const auto& C = e_.constraints[c];
+      const Sh_vector Bs = C.B * s_[i];
+      e[4] = s_[i].dot(Bs) - 2 * C.b.dot(s_[i]) + C.c;
+      grad += 2 * (Bs - C.b);
+    }
+    if (g) {
+      Eigen::Vector3d gi = sh_rotation_jacobian(s_[i]).transpose() * grad;
+      if (opt_.hard_boundary && c >= 0) {
+        const auto& C = e_.constraints[c];
+        gi = C.axes == 2 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(gi.dot(C.d1) * C.d1);
+      }
+      (*g)[k] = gi;
+    }
   });
 }
 

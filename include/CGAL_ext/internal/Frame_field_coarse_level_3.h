@@ -85,7 +85,7 @@ Frame_field_coarse_level build_coarse_level(const Energy& e, int aggregate_size)
         c.aggregate_of[j] = a;
         const int fj = e.cells[j]->index(e.cells[t]);
         const auto& L = e.links[j];
-        c.U[j] = L.identity[fj] ? c.U[t] : (L.T_in[fj] * c.U[t]).normalized(); // U_j = T(t->j) U_t
+        c.U[j] = L.identity[fj] ? c.U[t] : (e.transport_in[j][fj] * c.U[t]).normalized(); // U_j = T(t->j) U_t
         c.members.push_back(j);
       }
     }
@@ -108,7 +108,7 @@ Frame_field_coarse_level build_coarse_level(const Energy& e, int aggregate_size)
         for (int f = 0; f < 4; ++f) {
           const std::int64_t j = e.links[t].nb[f];
           if (j < 0) continue;
-          const Eigen::Quaterniond T = e.links[t].identity[f] ? Eigen::Quaterniond::Identity() : e.links[t].T_in[f];
+          const Eigen::Quaterniond T = e.links[t].identity[f] ? Eigen::Quaterniond::Identity() : e.transport_in[t][f];
           const Sh_matrix block = -e.links[t].w[f] * sh_rotation(Eigen::Quaterniond(c.U[t].conjugate() * T * c.U[j]));
           const std::size_t J = c.aggregate_of[j];
           std::size_t k = 0;

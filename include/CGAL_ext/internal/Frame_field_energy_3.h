@@ -54,8 +54,8 @@ public:
   struct Links {
     std::array<std::int64_t, 4> nb;         ///< the neighbour's index, -1 on the boundary
     std::array<double, 4> w;                ///< the face weight (soft boundary weight on the boundary)
-    std::array<Eigen::Quaterniond, 4> T_in; ///< the transport from the neighbour into this tetrahedron
     std::array<bool, 4> identity;           ///< whether that transport is exactly the identity
+    std::array<internal::Oct_euler_angles, 4> T_in_euler; ///< `transport_in` as the energy applies it to SH vectors
   };
   /// A boundary tetrahedron's terms: the soft term `s^T B s - 2 b.s + c`,
   /// the inverse of its preconditioner block, and the hard constraint.
@@ -138,9 +138,11 @@ public:
         const int fj = cj->index(c);
         if (T == Eigen::Matrix3d::Identity()) continue; // both slots stay identity
         const Eigen::Quaterniond q(T);
-        links[j].T_in[fj] = q.normalized();
+        transport_in[j][fj] = q.normalized();
+        links[j].T_in_euler[fj] = internal::oct_euler_angles(transport_in[j][fj]);
         links[j].identity[fj] = false;
-        links[i].T_in[f] = q.conjugate().normalized();
+        transport_in[i][f] = q.conjugate().normalized();
+        links[i].T_in_euler[f] = internal::oct_euler_angles(transport_in[i][f]);
         links[i].identity[f] = false;
         max_angle[i] = std::max(max_angle[i], rotation_angle(T));
       }
@@ -180,7 +182,7 @@ public:
   Sh_vector neighbour_sh(std::size_t i, int f, const std::vector<Sh_vector>& s) const {
     const Links& L = links[i];
     const Sh_vector& sj = s[L.nb[f]];
-    return L.identity[f] ? sj : rotate_sh(L.T_in[f], sj);
+    return L.identity[f] ? sj : internal::oct_apply(internal::oct_euler(L.T_in_euler[f]), sj);
   }
 
   // y = H x for the linear initialisation (half the Hessian of the quadratic energy).
@@ -233,6 +235,10 @@ public:
 
   std::vector<Cell_handle> cells;                 ///< the domain's cells, in index order
   std::vector<Links> links;                       ///< neighbours, weights and transports
+  /// Per tetrahedron and face, the transport from the neighbour into the
+  /// tetrahedron (apart from `links`, which the energy reads on every
+  /// evaluation and which is kept small).
+  std::vector<std::array<Eigen::Quaterniond, 4>> transport_in;
   std::vector<Eigen::Matrix3d> sqrt_metric;       ///< `A` at the centroids
   std::vector<Eigen::Vector3d> centroid;          ///< the centroids
   std::vector<double> volume;                     ///< the volumes
@@ -254,6 +260,7 @@ private:
   void set_up_geometry() {
     const std::size_t n = size();
     links.assign(n, Links());
+    transport_in.assign(n, {});
     sqrt_metric.assign(n, Eigen::Matrix3d::Identity());
     centroid.assign(n, Eigen::Vector3d::Zero());
     volume.assign(n, 0.0);
@@ -283,7 +290,8 @@ private:
         const std::int64_t j = field_->triangulation().is_infinite(nc) ? -1 : get(cim_, nc);
         L.nb[f] = j;
         L.identity[f] = true;
-        L.T_in[f] = Eigen::Quaterniond::Identity();
+        transport_in[i][f] = Eigen::Quaterniond::Identity();
+        L.T_in_euler[f] = internal::oct_euler_angles(transport_in[i][f]);
         L.w[f] = 0;
         // Each interior face's weight is computed by its smaller index and
         // copied to the other side below (symmetric bit for bit); boundary

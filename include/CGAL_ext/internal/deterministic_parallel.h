@@ -32,6 +32,7 @@ constexpr std::size_t deterministic_block = 2048;
 template <std::size_t K, class F>
 std::array<double, K> deterministic_sums(std::size_t n, F&& f) {
   const std::size_t nb = (n + deterministic_block - 1) / deterministic_block;
+  if (nb <= 1) return n == 0 ? std::array<double, K>{} : f(std::size_t(0), n); // no tasks for one block
   std::vector<std::array<double, K>> part(nb);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nb), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t b = r.begin(); b != r.end(); ++b)
@@ -55,6 +56,10 @@ double deterministic_sum(std::size_t n, F&& f) {
   })[0];
 }
 
+/// Below this many blocks, `deterministic_sum_of_terms()` computes the terms
+/// in parallel over the indices, not over the blocks.
+constexpr std::size_t deterministic_few_blocks = 8;
+
 /// Calls `f(i)` for `i` in `0..n-1` in parallel (`f` must write per-index data only).
 /// \tparam F a callable `void(std::size_t)`
 /// \param n the number of indices
@@ -63,6 +68,44 @@ template <class F>
 void parallel_for_each_index(std::size_t n, F&& f) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
+  });
+}
+
+/// The sum over `0..n-1` of `K` terms per index, added one by one in index
+/// order into a sum per fixed block (from 0), the blocks in order: the same
+/// bits as a `deterministic_sum()` whose block body adds them so, whatever the
+/// number of threads. A term left 0 adds nothing (the sums are never -0).
+/// With few blocks (a small `n`, as a local re-optimisation's) the terms are
+/// computed in parallel over the indices and added after, so that all
+/// threads work on them.
+/// \tparam K the number of terms per index
+/// \tparam Terms a callable `void(std::size_t i, std::array<double, K>& t)`
+///         that sets the terms of `i` in `t` (all 0 on entry) and may write
+///         other per-index data
+/// \param n the number of indices
+/// \param terms the terms
+template <std::size_t K, class Terms>
+double deterministic_sum_of_terms(std::size_t n, Terms&& terms) {
+  if (n >= deterministic_few_blocks * deterministic_block)
+    return deterministic_sum(n, [&](std::size_t first, std::size_t last) {
+      double s = 0;
+      for (std::size_t i = first; i < last; ++i) {
+        std::array<double, K> t{};
+        terms(i, t);
+        for (double x : t) s += x;
+      }
+      return s;
+    });
+  std::vector<std::array<double, K>> all(n);
+  parallel_for_each_index(n, [&](std::size_t i) {
+    all[i] = {};
+    terms(i, all[i]);
+  });
+  return deterministic_sum(n, [&](std::size_t first, std::size_t last) {
+    double s = 0;
+    for (std::size_t i = first; i < last; ++i)
+      for (double x : all[i]) s += x;
+    return s;
   });
 }
 
