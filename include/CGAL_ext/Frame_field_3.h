@@ -330,9 +330,8 @@ public:
   void start_frames(const std::vector<std::size_t>& tets, Reoptimize_start start) {
     prepare(opt_);
     if (tets.empty() || start == Reoptimize_start::current) return;
-    const Active_set set = mark(tets);
-    if (start != Reoptimize_start::propagated || !propagate(tets, local_)) relax(tets, set, local_);
-    unmark(tets);
+    const Marked marked(*this, tets);
+    if (start != Reoptimize_start::propagated || !propagate(tets, local_)) relax(tets, marked.set, local_);
   }
 
   /// Re-optimises the frames of some tetrahedra, all others fixed, as
@@ -341,8 +340,9 @@ public:
   /// their rotations. The result depends on the surrounding frames, the
   /// start and the seed, not on the previous frames of the tetrahedra given
   /// (except from the `current` start) nor on the thread count. The
-  /// statistics are not updated (see `update_statistics()`). Time and
-  /// memory go with the tetrahedra given, not with the mesh. Used by
+  /// statistics are not updated (see `update_statistics()`). Time goes
+  /// with the tetrahedra given, not with the mesh (the first call keeps 9
+  /// bytes per tetrahedron of scratch for all the later ones). Used by
   /// `repair_singularities()`, which restarts from several seeds to leave a
   /// local minimum.
   /// \param tets the tetrahedron indices to re-optimise (distinct)
@@ -365,10 +365,8 @@ public:
     internal::parallel_for_each_index(m, [&](std::size_t k) { constrain(tets[k]); });
     int evaluations = 0;
     bool limit = false;
-    const Active_set set = mark(tets);
-    const int iterations = lbfgs(set, evaluations, limit, nullptr);
-    unmark(tets);
-    return iterations;
+    const Marked marked(*this, tets);
+    return lbfgs(marked.set, evaluations, limit, nullptr);
   }
 
   /// The rotation `R_i` as the unit quaternion the optimiser holds (any
@@ -400,12 +398,12 @@ public:
   /// \returns the objective, in the units of `smoothness_energy()`
   double refinement_objective(const std::vector<std::size_t>& tets, std::vector<Eigen::Vector3d>& gradient) {
     prepare(opt_);
-    Active_set set;
-    set.n = size();
-    if (!tets.empty()) set = mark(tets);
+    const Marked marked(*this, tets);
+    Active_set all;
+    all.n = size();
+    const Active_set& set = tets.empty() ? all : marked.set;
     gradient.assign(set.n, Eigen::Vector3d::Zero());
     const double e = energy_and_gradient(set, &gradient);
-    if (!tets.empty()) unmark(tets);
     for (Eigen::Vector3d& g : gradient) g = std::ldexp(1.0, e_.weight_exponent) * g;
     return std::ldexp(e, e_.weight_exponent);
   }
@@ -551,20 +549,26 @@ private:
   };
 
   // The active set of a list, with marked_ and local_ (the position in the
-  // list) set for its tetrahedra; unmark() clears them, so that a local
-  // re-optimisation costs time in proportion to its list, not to the mesh.
-  Active_set mark(const std::vector<std::size_t>& tets) {
-    if (marked_.size() != size()) marked_.assign(size(), 0), local_.assign(size(), std::size_t(-1));
-    for (std::size_t k = 0; k < tets.size(); ++k) marked_[tets[k]] = 1, local_[tets[k]] = k;
+  // list) set for its tetrahedra while it lives and cleared after (also on
+  // an exception), so that a local re-optimisation costs time in proportion
+  // to its list, not to the mesh.
+  struct Marked {
+    Frame_field_3& ff;
+    const std::vector<std::size_t>& tets;
     Active_set set;
-    set.list = &tets;
-    set.marked = &marked_;
-    set.n = tets.size();
-    return set;
-  }
-  void unmark(const std::vector<std::size_t>& tets) {
-    for (std::size_t i : tets) marked_[i] = 0, local_[i] = std::size_t(-1);
-  }
+    Marked(Frame_field_3& f, const std::vector<std::size_t>& list) : ff(f), tets(list) {
+      if (ff.marked_.size() != ff.size()) ff.marked_.assign(ff.size(), 0), ff.local_.assign(ff.size(), std::size_t(-1));
+      for (std::size_t k = 0; k < tets.size(); ++k) ff.marked_[tets[k]] = 1, ff.local_[tets[k]] = k;
+      set.list = &tets;
+      set.marked = &ff.marked_;
+      set.n = tets.size();
+    }
+    ~Marked() {
+      for (std::size_t i : tets) ff.marked_[i] = 0, ff.local_[i] = std::size_t(-1);
+    }
+    Marked(const Marked&) = delete;
+    Marked& operator=(const Marked&) = delete;
+  };
 
   void relax(const std::vector<std::size_t>& tets, const Active_set& set, const std::vector<std::size_t>& local);
 
@@ -597,8 +601,8 @@ private:
   Energy e_;
   std::vector<Sh_vector> s_;
   std::vector<Eigen::Quaterniond> q_;
-  std::vector<char> marked_;       // scratch of mark(): all 0 between calls
-  std::vector<std::size_t> local_; // scratch of mark(): all size_t(-1) between calls
+  std::vector<char> marked_;       // scratch of Marked: all 0 between calls
+  std::vector<std::size_t> local_; // scratch of Marked: all size_t(-1) between calls
   bool prepared_ = false;
 };
 
