@@ -97,6 +97,19 @@ inline double Frame_field_3<Metric_field>::
   return internal::deterministic_sum_of_terms<5>(set.n, [&](std::size_t k, std::array<double, 5>& e) {
     const std::size_t i = set.tet(k);
     const auto& L = e_.links[i];
+#if defined(__GNUC__)
+    // The neighbours' frames are scattered in memory: fetch those of a
+    // tetrahedron a few ahead while this one computes.
+    constexpr std::size_t ahead = 8;
+    if (k + ahead < set.n) {
+      const auto& La = e_.links[set.tet(k + ahead)];
+      for (int f = 0; f < 4; ++f)
+        if (La.nb[f] >= 0) {
+          const char* p = reinterpret_cast<const char*>(&s_[std::size_t(La.nb[f])]);
+          __builtin_prefetch(p), __builtin_prefetch(p + sizeof(Sh_vector) - 1);
+        }
+    }
+#endif
     Sh_vector grad = Sh_vector::Zero();
     for (int f = 0; f < 4; ++f) {
       if (L.nb[f] < 0) continue;
