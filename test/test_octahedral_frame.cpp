@@ -20,6 +20,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <cstdlib>
 #include <set>
@@ -336,23 +337,51 @@ TEST_CASE("D is continuous through the gimbal lock and near pi", "[frames]") {
 
 TEST_CASE("a face's transport applied from its stored Euler angles is rotate_sh bit for bit", "[frames]") {
   // The energy keeps each face's transport as the cosines and sines of its
-  // Euler angles (internal::Oct_euler_angles); the field must not depend on it.
+  // Euler angles (internal::Oct_euler_angles) and applies up to four at once
+  // (internal::oct_apply_lanes); the field must depend on neither.
   Random r(17);
   std::vector<Eigen::Quaterniond> qs = {Eigen::Quaterniond::Identity(), Eigen::Quaterniond(0, 0, 0, 1),
                                         Eigen::Quaterniond(0, 1, 0, 0), Eigen::Quaterniond(std::sqrt(0.5), 0, std::sqrt(0.5), 0)};
   for (int k = 0; k < 200; ++k) qs.push_back(Eigen::Quaterniond(r.rotation()));
   for (int k = 0; k < 20; ++k) // near the gimbal lock: beta 1e-9 from 0 and from pi
     for (double b : {1e-9, pi - 1e-9}) qs.push_back(Eigen::Quaterniond(rz(r.uniform(-pi, pi)) * ry(b) * rz(r.uniform(-pi, pi))));
-  int differ = 0;
-  for (const Eigen::Quaterniond& q : qs) {
-    CGAL_ext::Sh_vector s;
-    for (int i = 0; i < 9; ++i) s(i) = r.uniform(-1, 1);
-    const CGAL_ext::Sh_vector a = CGAL_ext::rotate_sh(q, s);
-    const CGAL_ext::Sh_vector b =
-        CGAL_ext::internal::oct_apply(CGAL_ext::internal::oct_euler(CGAL_ext::internal::oct_euler_angles(q)), s);
-    differ += !std::equal(a.data(), a.data() + 9, b.data());
+  for (int k = 0; k < 6; ++k) // rotations about z (their own path) mixed in among the lanes
+    qs.insert(qs.begin() + 7 * k + 5, Eigen::Quaterniond(rz(r.uniform(-pi, pi))));
+  const std::size_t n = qs.size();
+  std::vector<CGAL_ext::Sh_vector> s(n);
+  for (auto& v : s) {
+    for (int i = 0; i < 9; ++i) v(i) = r.uniform(-1, 1);
+    if (r.uniform(0, 1) < 0.2) v(3) = -0.0, v(6) = 0.0; // signed zeros keep their sign as rotate_sh gives it
+  }
+  std::vector<CGAL_ext::internal::Oct_euler_angles> angles(n);
+  for (std::size_t k = 0; k < n; ++k) angles[k] = CGAL_ext::internal::oct_euler_angles(qs[k]);
+  int differ = 0, differ_lanes = 0, differ_in_place = 0;
+  auto same = [](const CGAL_ext::Sh_vector& a, const CGAL_ext::Sh_vector& b) {
+    return std::memcmp(a.data(), b.data(), sizeof(double) * 9) == 0;
+  };
+  for (std::size_t first = 0, width = 1; first < n; first += width, width = width % 4 + 1) {
+    const int m = int(std::min(width, n - first));
+    const CGAL_ext::internal::Oct_euler_angles* a[4];
+    const CGAL_ext::Sh_vector* from[4];
+    CGAL_ext::Sh_vector out[4], in_place[4];
+    CGAL_ext::Sh_vector *to[4], *to_in_place[4];
+    for (int l = 0; l < m; ++l) {
+      a[l] = &angles[first + l], from[l] = &s[first + l], to[l] = &out[l];
+      in_place[l] = s[first + l], to_in_place[l] = &in_place[l];
+    }
+    CGAL_ext::internal::oct_apply_lanes(m, a, from, to);
+    CGAL_ext::internal::oct_apply_lanes(m, a, to_in_place, to_in_place);
+    for (int l = 0; l < m; ++l) {
+      const CGAL_ext::Sh_vector expected = CGAL_ext::rotate_sh(qs[first + l], s[first + l]);
+      differ += !same(expected, CGAL_ext::internal::oct_apply(CGAL_ext::internal::oct_euler(angles[first + l]),
+                                                              s[first + l]));
+      differ_lanes += !same(expected, out[l]);
+      differ_in_place += !same(expected, in_place[l]);
+    }
   }
   CHECK(differ == 0);
+  CHECK(differ_lanes == 0);
+  CHECK(differ_in_place == 0);
 }
 
 TEST_CASE("generators: skew, commutators, exp(w.L) = D(exp([w]_x)), derivative of functions", "[frames]") {

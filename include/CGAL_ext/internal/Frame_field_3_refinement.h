@@ -70,11 +70,12 @@ inline void Frame_field_3<Metric_field>::
       const std::size_t i = tets[k];
       const auto& L = e_.links[i];
       Sh_vector r = e_.diagonal[i] * v[k];
-      for (int f = 0; f < 4; ++f) {
-        if (L.nb[f] < 0 || !set.active(L.nb[f])) continue;
-        const Sh_vector& vj = v[local[L.nb[f]]];
-        r -= L.w[f] * (L.identity[f] ? vj : Sh_vector(internal::oct_apply(internal::oct_euler(L.T_in_euler[f]), vj)));
-      }
+      const Sh_vector* from[4];
+      Sh_vector t[4];
+      for (int f = 0; f < 4; ++f) from[f] = L.nb[f] >= 0 && set.active(L.nb[f]) ? &v[local[L.nb[f]]] : nullptr;
+      e_.transported(i, from, t);
+      for (int f = 0; f < 4; ++f)
+        if (from[f]) r -= L.w[f] * t[f];
       if (e_.constraint_of[i] >= 0) r += e_.constraints[e_.constraint_of[i]].B * v[k];
       y[k] = r;
     });
@@ -110,10 +111,11 @@ inline double Frame_field_3<Metric_field>::
         }
     }
 #endif
-    Sh_vector grad = Sh_vector::Zero();
+    Sh_vector grad = Sh_vector::Zero(), t[4];
+    e_.neighbour_shs(i, s_, t);
     for (int f = 0; f < 4; ++f) {
       if (L.nb[f] < 0) continue;
-      const Sh_vector r = s_[i] - e_.neighbour_sh(i, f, s_);
+      const Sh_vector r = s_[i] - t[f];
       // A face between two active tetrahedra is seen from both sides.
       e[f] = (set.active(L.nb[f]) ? 0.5 : 1.0) * L.w[f] * r.squaredNorm();
       grad += (2 * L.w[f]) * r;
@@ -174,10 +176,19 @@ inline int Frame_field_3<Metric_field>::lbfgs(const Active_set& set, int& evalua
   const internal::Lbfgs_outcome out = internal::lbfgs_on_rotations(
       inverse_diagonal, [&](std::vector<Eigen::Vector3d>& g) { return energy_and_gradient(set, &g); },
       [&](const std::vector<Eigen::Vector3d>& p, double step) {
-        internal::parallel_for_each_index(n, [&](std::size_t k) {
-          const std::size_t i = set.tet(k);
-          q_[i] = step == 0 ? q_old[k] : (internal::oct_quaternion_exp(step * p[k]) * q_old[k]).normalized();
-          s_[i] = rotate_sh(q_[i], s0);
+        // By fours, so that their SH vectors are turned together (oct_apply_lanes()).
+        internal::parallel_for_each_index((n + 3) / 4, [&](std::size_t g) {
+          internal::Oct_euler_angles a[4];
+          const internal::Oct_euler_angles* pa[4];
+          const Sh_vector* from[4];
+          Sh_vector* to[4];
+          int m = 0;
+          for (std::size_t k = 4 * g; k < std::min(4 * g + 4, n); ++k, ++m) {
+            const std::size_t i = set.tet(k);
+            q_[i] = step == 0 ? q_old[k] : (internal::oct_quaternion_exp(step * p[k]) * q_old[k]).normalized();
+            a[m] = internal::oct_euler_angles(q_[i]), pa[m] = &a[m], from[m] = &s0, to[m] = &s_[i];
+          }
+          internal::oct_apply_lanes(m, pa, from, to);
         });
       },
       [&] { internal::parallel_for_each_index(n, [&](std::size_t k) { q_old[k] = q_[set.tet(k)]; }); },

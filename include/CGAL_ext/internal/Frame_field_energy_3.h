@@ -184,14 +184,41 @@ public:
     const Sh_vector& sj = s[L.nb[f]];
     return L.identity[f] ? sj : internal::oct_apply(internal::oct_euler(L.T_in_euler[f]), sj);
   }
+  // out[f] = D(T(f)) *v[f] for the faces f of i with a v[f] (the others
+  // left alone), the transports applied together (oct_apply_lanes(): the
+  // bits of neighbour_sh(), in a third of the time).
+  void transported(std::size_t i, const Sh_vector* const (&v)[4], Sh_vector (&out)[4]) const {
+    const Links& L = links[i];
+    const internal::Oct_euler_angles* a[4];
+    const Sh_vector* from[4];
+    Sh_vector* to[4];
+    int n = 0;
+    for (int f = 0; f < 4; ++f) {
+      if (!v[f]) continue;
+      if (L.identity[f]) {
+        out[f] = *v[f];
+      } else {
+        a[n] = &L.T_in_euler[f], from[n] = v[f], to[n] = &out[f];
+        ++n;
+      }
+    }
+    internal::oct_apply_lanes(n, a, from, to);
+  }
+  // out[f] = neighbour_sh(i, f, s) for the interior faces f of i.
+  void neighbour_shs(std::size_t i, const std::vector<Sh_vector>& s, Sh_vector (&out)[4]) const {
+    const Sh_vector* v[4];
+    for (int f = 0; f < 4; ++f) v[f] = links[i].nb[f] >= 0 ? &s[std::size_t(links[i].nb[f])] : nullptr;
+    transported(i, v, out);
+  }
 
   // y = H x for the linear initialisation (half the Hessian of the quadratic energy).
   void apply_linear(const std::vector<Sh_vector>& x, std::vector<Sh_vector>& y) const {
     internal::parallel_for_each_index(size(), [&](std::size_t i) {
       const Links& L = links[i];
-      Sh_vector r = diagonal[i] * x[i];
+      Sh_vector r = diagonal[i] * x[i], t[4];
+      neighbour_shs(i, x, t);
       for (int f = 0; f < 4; ++f)
-        if (L.nb[f] >= 0) r -= L.w[f] * neighbour_sh(i, f, x);
+        if (L.nb[f] >= 0) r -= L.w[f] * t[f];
       if (constraint_of[i] >= 0) r += constraints[constraint_of[i]].B * x[i];
       y[i] = r;
     });
@@ -204,8 +231,10 @@ public:
   // sum_f w_f |s_i - D(T(j->i)) s_j|^2 over the interior faces of i.
   double local_smoothness(std::size_t i, const std::vector<Sh_vector>& s) const {
     double e = 0;
+    Sh_vector t[4];
+    neighbour_shs(i, s, t);
     for (int f = 0; f < 4; ++f)
-      if (links[i].nb[f] >= 0) e += links[i].w[f] * (s[i] - neighbour_sh(i, f, s)).squaredNorm();
+      if (links[i].nb[f] >= 0) e += links[i].w[f] * (s[i] - t[f]).squaredNorm();
     return e;
   }
 

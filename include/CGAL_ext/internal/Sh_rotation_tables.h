@@ -79,25 +79,59 @@ inline Mat oct_mul_transposed(const Mat& in) {
   return oct_mul_transposed_impl<A>(in, std::make_index_sequence<std::extent_v<std::remove_reference_t<decltype(A)>>>());
 }
 
-// cos(m a), sin(m a) for m = 0..4 from cos a, sin a (angle addition, no trig calls).
-struct Oct_multiples {
-  double c[5], s[5];
-  Oct_multiples(double c1, double s1) {
-    c[0] = 1, s[0] = 0, c[1] = c1, s[1] = s1;
+// cos(m a), sin(m a) for m = 0..4 from cos a, sin a (angle addition, no trig
+// calls). T: double, or a vector of doubles whose operations act lane by
+// lane (Oct_lanes), so that each lane has the bits of the scalar.
+template <class T>
+struct Oct_multiples_of {
+  T c[5], s[5];
+  Oct_multiples_of(const T& c1, const T& s1) {
+    c[0] = T{} + 1, s[0] = T{}, c[1] = c1, s[1] = s1;
     c[2] = c1 * c1 - s1 * s1, s[2] = 2 * s1 * c1;
     c[3] = c[2] * c1 - s[2] * s1, s[3] = s[2] * c1 + c[2] * s1;
     c[4] = c[2] * c[2] - s[2] * s[2], s[4] = 2 * s[2] * c[2];
   }
 };
+using Oct_multiples = Oct_multiples_of<double>;
 
-// M <- D(Rz(a)) M: (D v)_m = cos(ma) v_m - sin(ma) v_-m, (D v)_-m = sin(ma) v_m + cos(ma) v_-m.
-template <class Mat>
-inline void oct_rotate_z(const Oct_multiples& a, Mat& M) {
+// x <- D(Rz(a)) x: (D x)_m = cos(ma) x_m - sin(ma) x_-m, (D x)_-m = sin(ma) x_m + cos(ma) x_-m.
+template <class T>
+inline void oct_rotate_z(const Oct_multiples_of<T>& a, T* x) {
   for (int m = 1; m <= 4; ++m) {
-    const Eigen::Matrix<double, 1, Mat::ColsAtCompileTime> p = M.row(4 + m), n = M.row(4 - m);
-    M.row(4 + m) = a.c[m] * p - a.s[m] * n;
-    M.row(4 - m) = a.s[m] * p + a.c[m] * n;
+    const T p = x[4 + m], n = x[4 - m];
+    x[4 + m] = a.c[m] * p - a.s[m] * n;
+    x[4 - m] = a.s[m] * p + a.c[m] * n;
   }
+}
+
+// out = A in and out = A^T in for the constant sparse table A, unrolled.
+template <const auto& A, class T, std::size_t... I>
+inline void oct_mul_into(const T* in, T* out, std::index_sequence<I...>) {
+  for (int r = 0; r < 9; ++r) out[r] = T{};
+  ((out[A[I].row] += A[I].value * in[A[I].col]), ...);
+}
+template <const auto& A, class T, std::size_t... I>
+inline void oct_mul_transposed_into(const T* in, T* out, std::index_sequence<I...>) {
+  for (int r = 0; r < 9; ++r) out[r] = T{};
+  ((out[A[I].col] += A[I].value * in[A[I].row]), ...);
+}
+
+// x <- D(R) x with D(R) = D(Rz(a)) X^T D(Rz(b)) X D(Rz(g)), since
+// Ry(b) = Rx(-90) Rz(b) Rx(90). When beta is exactly 0 (`about_z`: a
+// rotation about z, the identity included) only the z rotations are
+// applied, so that D(I) = I and D(Rz) are exact.
+template <class T>
+inline void oct_rotate(const Oct_multiples_of<T>& alpha, const Oct_multiples_of<T>& beta,
+                       const Oct_multiples_of<T>& gamma, bool about_z, T* x) {
+  oct_rotate_z(gamma, x);
+  if (!about_z) {
+    constexpr auto n = std::extent_v<decltype(oct_x90)>;
+    T y[9];
+    oct_mul_into<oct_x90>(x, y, std::make_index_sequence<n>());
+    oct_rotate_z(beta, y);
+    oct_mul_transposed_into<oct_x90>(y, x, std::make_index_sequence<n>());
+  }
+  oct_rotate_z(alpha, x);
 }
 
 // The z-y-z Euler angles R = Rz(alpha) Ry(beta) Rz(gamma) of a quaternion,
@@ -107,57 +141,83 @@ inline void oct_rotate_z(const Oct_multiples& a, Mat& M) {
 //   y = sin(b/2) cos((a-g)/2), x = -sin(b/2) sin((a-g)/2).
 // When cos(b/2) (or sin(b/2)) vanishes, (a+g)/2 (or (a-g)/2) is free and 0 is
 // taken; its influence on R is proportional to the vanishing factor.
+// Oct_euler_angles keeps the cosines and sines of alpha, beta, gamma alone
+// (48 bytes), for a rotation applied many times (a face's transport);
+// Oct_euler adds their multiples.
+struct Oct_euler_angles {
+  double c[3], s[3];
+  bool about_z() const { return s[1] == 0 && c[1] == 1; }
+};
 struct Oct_euler {
   Oct_multiples alpha, beta, gamma;
 };
-inline Oct_euler oct_euler(double w, double x, double y, double z) {
+inline Oct_euler_angles oct_euler_angles(double w, double x, double y, double z) {
   const double r1 = std::sqrt(w * w + z * z), r2 = std::sqrt(x * x + y * y);
   double cp = 1, sp = 0, cq = 1, sq = 0;
   if (r1 > 0) cp = w / r1, sp = z / r1;
   if (r2 > 0) cq = y / r2, sq = -x / r2;
   const double n2 = r1 * r1 + r2 * r2;
-  return {Oct_multiples(cp * cq - sp * sq, sp * cq + cp * sq),
-          Oct_multiples((r1 - r2) * (r1 + r2) / n2, 2 * r1 * r2 / n2),
-          Oct_multiples(cp * cq + sp * sq, sp * cq - cp * sq)};
+  return {{cp * cq - sp * sq, (r1 - r2) * (r1 + r2) / n2, cp * cq + sp * sq},
+          {sp * cq + cp * sq, 2 * r1 * r2 / n2, sp * cq - cp * sq}};
 }
-
-// M <- D(R) M, with D(R) = D(Rz(a)) X^T D(Rz(b)) X D(Rz(g)), since
-// Ry(b) = Rx(-90) Rz(b) Rx(90).
-// Mat: a fixed-size matrix type with 9 rows (row-major is faster for 9x9).
-// When beta is exactly 0 (a rotation about z, the identity included) only
-// D(Rz(a + g)) is applied, so that D(I) = I and D(Rz) are exact.
-template <class Mat>
-inline Mat oct_apply(const Oct_euler& e, Mat M) {
-  if (e.beta.s[1] == 0 && e.beta.c[1] == 1) {
-    oct_rotate_z(e.gamma, M);
-    oct_rotate_z(e.alpha, M);
-    return M;
-  }
-  oct_rotate_z(e.gamma, M);
-  M = oct_mul<oct_x90>(M);
-  oct_rotate_z(e.beta, M);
-  M = oct_mul_transposed<oct_x90>(M);
-  oct_rotate_z(e.alpha, M);
-  return M;
-}
-
-inline Oct_euler oct_euler(const Eigen::Quaterniond& q) { return oct_euler(q.w(), q.x(), q.y(), q.z()); }
-inline Oct_euler oct_euler(const Eigen::Matrix3d& R) { return oct_euler(Eigen::Quaterniond(R)); }
-
-// The cosines and sines of the Euler angles alpha, beta, gamma alone (48
-// bytes), for a rotation applied many times (a face's transport): the
-// Oct_euler they give back is the same bits, without oct_euler()'s square
-// roots and divisions on each application (half the time of rotate_sh()).
-struct Oct_euler_angles {
-  double c[3], s[3];
-};
 inline Oct_euler_angles oct_euler_angles(const Eigen::Quaterniond& q) {
-  const Oct_euler e = oct_euler(q);
-  return {{e.alpha.c[1], e.beta.c[1], e.gamma.c[1]}, {e.alpha.s[1], e.beta.s[1], e.gamma.s[1]}};
+  return oct_euler_angles(q.w(), q.x(), q.y(), q.z());
 }
 inline Oct_euler oct_euler(const Oct_euler_angles& e) {
   return {Oct_multiples(e.c[0], e.s[0]), Oct_multiples(e.c[1], e.s[1]), Oct_multiples(e.c[2], e.s[2])};
 }
+inline Oct_euler oct_euler(const Eigen::Quaterniond& q) { return oct_euler(oct_euler_angles(q)); }
+inline Oct_euler oct_euler(const Eigen::Matrix3d& R) { return oct_euler(Eigen::Quaterniond(R)); }
+
+// M <- D(R) M, column by column. Mat: a fixed-size matrix type with 9 rows.
+template <class Mat>
+inline Mat oct_apply(const Oct_euler& e, Mat M) {
+  const bool about_z = e.beta.s[1] == 0 && e.beta.c[1] == 1;
+  for (Eigen::Index j = 0; j < M.cols(); ++j) {
+    double x[9];
+    for (int k = 0; k < 9; ++k) x[k] = M(k, j);
+    oct_rotate(e.alpha, e.beta, e.gamma, about_z, x);
+    for (int k = 0; k < 9; ++k) M(k, j) = x[k];
+  }
+  return M;
+}
+
+// Up to four vectors turned at once, each by its own rotation:
+// out[k] = D(R(a[k])) v[k] for k < n, with the bits of oct_apply() on each,
+// as each lane does the scalar operations (3 times faster than one by one:
+// the lanes' independent chains hide each other's latency). `out[k]` may be
+// `v[k]`.
+#if defined(__GNUC__)
+using Oct_lanes = double __attribute__((vector_size(4 * sizeof(double))));
+inline void oct_apply_lanes(int n, const Oct_euler_angles* const* a, const Eigen::Matrix<double, 9, 1>* const* v,
+                            Eigen::Matrix<double, 9, 1>* const* out) {
+  Oct_lanes c[3], s[3], x[9];
+  int lanes = 0, lane_of[4];
+  for (int k = 0; k < n; ++k) {
+    if (a[k]->about_z()) { // rare: its own path (z rotations only)
+      *out[k] = oct_apply(oct_euler(*a[k]), Eigen::Matrix<double, 9, 1>(*v[k]));
+      continue;
+    }
+    for (int j = 0; j < 3; ++j) c[j][lanes] = a[k]->c[j], s[j][lanes] = a[k]->s[j];
+    for (int r = 0; r < 9; ++r) x[r][lanes] = (*v[k])[r];
+    lane_of[lanes++] = k;
+  }
+  if (lanes == 0) return;
+  for (int l = lanes; l < 4; ++l) { // unused lanes repeat lane 0
+    for (int j = 0; j < 3; ++j) c[j][l] = c[j][0], s[j][l] = s[j][0];
+    for (int r = 0; r < 9; ++r) x[r][l] = x[r][0];
+  }
+  oct_rotate(Oct_multiples_of<Oct_lanes>(c[0], s[0]), Oct_multiples_of<Oct_lanes>(c[1], s[1]),
+             Oct_multiples_of<Oct_lanes>(c[2], s[2]), false, x);
+  for (int l = 0; l < lanes; ++l)
+    for (int r = 0; r < 9; ++r) (*out[lane_of[l]])[r] = x[r][l];
+}
+#else
+inline void oct_apply_lanes(int n, const Oct_euler_angles* const* a, const Eigen::Matrix<double, 9, 1>* const* v,
+                            Eigen::Matrix<double, 9, 1>* const* out) {
+  for (int k = 0; k < n; ++k) *out[k] = oct_apply(oct_euler(*a[k]), Eigen::Matrix<double, 9, 1>(*v[k]));
+}
+#endif
 
 } // namespace internal
 } // namespace CGAL_ext
