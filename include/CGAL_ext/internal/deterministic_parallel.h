@@ -96,7 +96,20 @@ double deterministic_sum_of_terms(std::size_t n, Terms&& terms) {
       }
       return s;
     });
-  std::vector<std::array<double, K>> all(n);
+  // The terms' buffer is kept per thread between calls (a region's L-BFGS
+  // sums hundreds of times; fewer than 8 blocks of indices here); a
+  // call nested in `terms` uses one of its own.
+  static thread_local std::vector<std::array<double, K>> kept;
+  static thread_local bool kept_in_use = false;
+  std::vector<std::array<double, K>> own;
+  struct Use {
+    bool& flag;
+    const bool was;
+    ~Use() { flag = was; }
+  } use{kept_in_use, kept_in_use};
+  std::vector<std::array<double, K>>& all = use.was ? own : kept;
+  kept_in_use = true;
+  if (all.size() < n) all.resize(n);
   parallel_for_each_index(n, [&](std::size_t i) {
     all[i] = {};
     terms(i, all[i]);
