@@ -356,6 +356,7 @@ TEST_CASE("a face's transport applied from its stored Euler angles is rotate_sh 
   std::vector<CGAL_ext::internal::Oct_euler_angles> angles(n);
   for (std::size_t k = 0; k < n; ++k) angles[k] = CGAL_ext::internal::oct_euler_angles(qs[k]);
   int differ = 0, differ_lanes = 0, differ_in_place = 0;
+  double worst = 0;
   auto same = [](const CGAL_ext::Sh_vector& a, const CGAL_ext::Sh_vector& b) {
     return std::memcmp(a.data(), b.data(), sizeof(double) * 9) == 0;
   };
@@ -377,11 +378,20 @@ TEST_CASE("a face's transport applied from its stored Euler angles is rotate_sh 
                                                               s[first + l]));
       differ_lanes += !same(expected, out[l]);
       differ_in_place += !same(expected, in_place[l]);
+      worst = std::max({worst, (expected - out[l]).cwiseAbs().maxCoeff(), (expected - in_place[l]).cwiseAbs().maxCoeff()});
     }
   }
   CHECK(differ == 0);
+  CHECK(worst <= 1e-14);
+#if defined(__FP_FAST_FMA)
+  // With FMA instructions (e.g. -march=native) the compiler may fuse the
+  // lanes' and the scalar path's products differently: the last bits may
+  // differ between them (each is still the same for any thread count).
+  WARN("FMA build: lanes compared to 1e-14, not bit for bit (" << differ_lanes << " differ in their last bits)");
+#else
   CHECK(differ_lanes == 0);
   CHECK(differ_in_place == 0);
+#endif
 }
 
 TEST_CASE("generators: skew, commutators, exp(w.L) = D(exp([w]_x)), derivative of functions", "[frames]") {

@@ -557,7 +557,9 @@ private:
     const std::vector<std::size_t>& tets;
     Active_set set;
     Marked(Frame_field_3& f, const std::vector<std::size_t>& list) : ff(f), tets(list) {
-      if (ff.marked_.size() != ff.size()) ff.marked_.assign(ff.size(), 0), ff.local_.assign(ff.size(), std::size_t(-1));
+      // The scratch is made on the first list (an empty one, all frames, needs none).
+      if (!tets.empty() && ff.marked_.size() != ff.size())
+        ff.marked_.assign(ff.size(), 0), ff.local_.assign(ff.size(), std::size_t(-1));
       for (std::size_t k = 0; k < tets.size(); ++k) ff.marked_[tets[k]] = 1, ff.local_[tets[k]] = k;
       set.list = &tets;
       set.marked = &ff.marked_;

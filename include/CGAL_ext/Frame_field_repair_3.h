@@ -299,9 +299,9 @@ private:
     std::vector<Eigen::Quaterniond> saved(tets.size());
     for (std::size_t k = 0; k < tets.size(); ++k) saved[k] = ff_.rotation_quaternion(tets[k]);
 
-    // The relaxed start of `relaxed_tets`, solved once for all the restarts
-    // from it (the open regions change rarely).
-    std::vector<std::size_t> relaxed_tets;
+    // The relaxed start of the open regions `relaxed_open`, solved once for
+    // all the restarts from it (the open regions change rarely).
+    std::vector<std::size_t> relaxed_open;
     std::vector<Eigen::Quaterniond> relaxed;
     const int starts = 2 + restarts;
     for (int s = 0; s < starts; ++s) {
@@ -314,9 +314,9 @@ private:
       const std::uint64_t seed = s < 2 ? 0 : split_seed(std::uint64_t(round), std::uint64_t(s), tets.front());
       Start start = Start::propagated;
       if (s != 1) {
-        if (open_tets != relaxed_tets) {
+        if (open != relaxed_open) {
           ff_.start_frames(open_tets, Start::relaxed);
-          relaxed_tets = open_tets;
+          relaxed_open = open;
           relaxed.resize(open_tets.size());
           for (std::size_t k = 0; k < open_tets.size(); ++k) relaxed[k] = ff_.rotation_quaternion(open_tets[k]);
         } else {
