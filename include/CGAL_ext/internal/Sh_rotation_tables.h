@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <cassert>
 #include <cmath>
 #include <cstddef>
 #include <utility>
@@ -183,39 +184,47 @@ inline Mat oct_apply(const Oct_euler& e, Mat M) {
 }
 
 // Up to four vectors turned at once, each by its own rotation:
-// out[k] = D(R(a[k])) v[k] for k < n, with the bits of oct_apply() on each,
-// as each lane does the scalar operations (3 times faster than one by one:
-// the lanes' independent chains hide each other's latency). `out[k]` may be
-// `v[k]`.
+// out[k] = D(R(a[k])) v[k] for k < n <= 4, with the bits of oct_apply() on
+// each, as each lane does the scalar operations (3 times faster than one by
+// one: the lanes' independent chains hide each other's latency). All inputs
+// are read before any output is written, so outputs may overlap inputs.
 #if defined(__GNUC__)
 using Oct_lanes = double __attribute__((vector_size(4 * sizeof(double))));
 inline void oct_apply_lanes(int n, const Oct_euler_angles* const* a, const Eigen::Matrix<double, 9, 1>* const* v,
                             Eigen::Matrix<double, 9, 1>* const* out) {
+  assert(0 <= n && n <= 4);
   Oct_lanes c[3], s[3], x[9];
-  int lanes = 0, lane_of[4];
+  Eigen::Matrix<double, 9, 1> about_z[4];
+  int lanes = 0, lane_of[4], z = 0, z_of[4];
   for (int k = 0; k < n; ++k) {
-    if (a[k]->about_z()) { // rare: its own path (z rotations only)
-      *out[k] = oct_apply(oct_euler(*a[k]), Eigen::Matrix<double, 9, 1>(*v[k]));
+    if (a[k]->about_z()) { // rare: its own exact path (z rotations only)
+      about_z[z] = oct_apply(oct_euler(*a[k]), Eigen::Matrix<double, 9, 1>(*v[k]));
+      z_of[z++] = k;
       continue;
     }
     for (int j = 0; j < 3; ++j) c[j][lanes] = a[k]->c[j], s[j][lanes] = a[k]->s[j];
     for (int r = 0; r < 9; ++r) x[r][lanes] = (*v[k])[r];
     lane_of[lanes++] = k;
   }
-  if (lanes == 0) return;
-  for (int l = lanes; l < 4; ++l) { // unused lanes repeat lane 0
-    for (int j = 0; j < 3; ++j) c[j][l] = c[j][0], s[j][l] = s[j][0];
-    for (int r = 0; r < 9; ++r) x[r][l] = x[r][0];
+  if (lanes > 0) {
+    for (int l = lanes; l < 4; ++l) { // unused lanes repeat lane 0 and are not read back
+      for (int j = 0; j < 3; ++j) c[j][l] = c[j][0], s[j][l] = s[j][0];
+      for (int r = 0; r < 9; ++r) x[r][l] = x[r][0];
+    }
+    oct_rotate(Oct_multiples_of<Oct_lanes>(c[0], s[0]), Oct_multiples_of<Oct_lanes>(c[1], s[1]),
+               Oct_multiples_of<Oct_lanes>(c[2], s[2]), false, x);
   }
-  oct_rotate(Oct_multiples_of<Oct_lanes>(c[0], s[0]), Oct_multiples_of<Oct_lanes>(c[1], s[1]),
-             Oct_multiples_of<Oct_lanes>(c[2], s[2]), false, x);
   for (int l = 0; l < lanes; ++l)
     for (int r = 0; r < 9; ++r) (*out[lane_of[l]])[r] = x[r][l];
+  for (int k = 0; k < z; ++k) *out[z_of[k]] = about_z[k];
 }
 #else
 inline void oct_apply_lanes(int n, const Oct_euler_angles* const* a, const Eigen::Matrix<double, 9, 1>* const* v,
                             Eigen::Matrix<double, 9, 1>* const* out) {
-  for (int k = 0; k < n; ++k) *out[k] = oct_apply(oct_euler(*a[k]), Eigen::Matrix<double, 9, 1>(*v[k]));
+  assert(0 <= n && n <= 4);
+  Eigen::Matrix<double, 9, 1> y[4];
+  for (int k = 0; k < n; ++k) y[k] = oct_apply(oct_euler(*a[k]), Eigen::Matrix<double, 9, 1>(*v[k]));
+  for (int k = 0; k < n; ++k) *out[k] = y[k];
 }
 #endif
 
