@@ -347,11 +347,20 @@ Mat rotate_by_rows(const CGAL_ext::internal::Oct_euler& e, Mat M) {
       M.row(4 - m) = a.s[m] * p + a.c[m] * n;
     }
   };
+  auto x90 = [&](bool transposed) { // the table's entries in order, as rows
+    Mat out = Mat::Zero();
+    for (const auto& t : CGAL_ext::internal::oct_x90)
+      if (transposed)
+        out.row(t.col) += t.value * M.row(t.row);
+      else
+        out.row(t.row) += t.value * M.row(t.col);
+    M = out;
+  };
   rotate_z(e.gamma);
   if (!(e.beta.s[1] == 0 && e.beta.c[1] == 1)) {
-    M = CGAL_ext::internal::oct_mul<CGAL_ext::internal::oct_x90>(M);
+    x90(false);
     rotate_z(e.beta);
-    M = CGAL_ext::internal::oct_mul_transposed<CGAL_ext::internal::oct_x90>(M);
+    x90(true);
   }
   rotate_z(e.alpha);
   return M;

@@ -57,29 +57,6 @@ inline constexpr Oct_entry oct_ly[14] = {
 inline constexpr Oct_entry oct_lz[8] = {{0, 8, 4}, {1, 7, 3}, {2, 6, 2}, {3, 5, 1},
                                         {5, 3, -1}, {6, 2, -2}, {7, 1, -3}, {8, 0, -4}};
 
-// out = A in and out = A^T in (rows of a 9xN block), unrolled at compile
-// time over the nonzeros of the constant table A.
-template <const auto& A, class Mat, std::size_t... I>
-inline Mat oct_mul_impl(const Mat& in, std::index_sequence<I...>) {
-  Mat out = Mat::Zero();
-  ((out.row(A[I].row) += A[I].value * in.row(A[I].col)), ...);
-  return out;
-}
-template <const auto& A, class Mat, std::size_t... I>
-inline Mat oct_mul_transposed_impl(const Mat& in, std::index_sequence<I...>) {
-  Mat out = Mat::Zero();
-  ((out.row(A[I].col) += A[I].value * in.row(A[I].row)), ...);
-  return out;
-}
-template <const auto& A, class Mat>
-inline Mat oct_mul(const Mat& in) {
-  return oct_mul_impl<A>(in, std::make_index_sequence<std::extent_v<std::remove_reference_t<decltype(A)>>>());
-}
-template <const auto& A, class Mat>
-inline Mat oct_mul_transposed(const Mat& in) {
-  return oct_mul_transposed_impl<A>(in, std::make_index_sequence<std::extent_v<std::remove_reference_t<decltype(A)>>>());
-}
-
 // cos(m a), sin(m a) for m = 0..4 from cos a, sin a (angle addition, no trig
 // calls). T: double, or a vector of doubles whose operations act lane by
 // lane (Oct_lanes), so that each lane has the bits of the scalar.
@@ -115,6 +92,19 @@ template <const auto& A, class T, std::size_t... I>
 inline void oct_mul_transposed_into(const T* in, T* out, std::index_sequence<I...>) {
   for (int r = 0; r < 9; ++r) out[r] = T{};
   ((out[A[I].col] += A[I].value * in[A[I].row]), ...);
+}
+
+// out = A in for a 9xN matrix, column by column.
+template <const auto& A, class Mat>
+inline Mat oct_mul(const Mat& in) {
+  Mat out;
+  for (Eigen::Index j = 0; j < in.cols(); ++j) {
+    double x[9], y[9];
+    for (int k = 0; k < 9; ++k) x[k] = in(k, j);
+    oct_mul_into<A>(x, y, std::make_index_sequence<std::extent_v<std::remove_reference_t<decltype(A)>>>());
+    for (int k = 0; k < 9; ++k) out(k, j) = y[k];
+  }
+  return out;
 }
 
 // x <- D(R) x with D(R) = D(Rz(a)) X^T D(Rz(b)) X D(Rz(g)), since
