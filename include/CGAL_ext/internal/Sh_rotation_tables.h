@@ -135,9 +135,11 @@ inline void oct_rotate(const Oct_multiples_of<T>& alpha, const Oct_multiples_of<
 // Oct_euler_angles keeps the cosines and sines of alpha, beta, gamma alone
 // (48 bytes), for a rotation applied many times (a face's transport);
 // Oct_euler adds their multiples.
+// A rotation exactly about z (beta exactly 0), given beta's cosine and sine.
+inline bool oct_is_about_z(double cos_beta, double sin_beta) { return sin_beta == 0 && cos_beta == 1; }
 struct Oct_euler_angles {
   double c[3], s[3];
-  bool about_z() const { return s[1] == 0 && c[1] == 1; }
+  bool about_z() const { return oct_is_about_z(c[1], s[1]); }
 };
 struct Oct_euler {
   Oct_multiples alpha, beta, gamma;
@@ -163,7 +165,7 @@ inline Oct_euler oct_euler(const Eigen::Matrix3d& R) { return oct_euler(Eigen::Q
 // M <- D(R) M, column by column. Mat: a fixed-size matrix type with 9 rows.
 template <class Mat>
 inline Mat oct_apply(const Oct_euler& e, Mat M) {
-  const bool about_z = e.beta.s[1] == 0 && e.beta.c[1] == 1;
+  const bool about_z = oct_is_about_z(e.beta.c[1], e.beta.s[1]);
   for (Eigen::Index j = 0; j < M.cols(); ++j) {
     double x[9];
     for (int k = 0; k < 9; ++k) x[k] = M(k, j);
