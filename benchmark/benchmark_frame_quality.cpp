@@ -26,13 +26,15 @@
 // default 1/15, frames.perm) into a temporary directory, run through both,
 // and the hex mesh measured by scripts/hex_mesh_quality.py (python3): hexes,
 // scaled Jacobian min and median, hexes with a scaled Jacobian <= 0, and the
-// coverage (hex volume over tet volume). "MIP" marks a failed mixed-integer
+// coverage (hex volume over tet volume), with its ceiling: what hexes of the
+// mesh's boundary edge length, and hexes of the size asked for, can cover at
+// best where the boundary is curved (their bilinear quads cut below it). "MIP" marks a failed mixed-integer
 // solve of integergrid (it then writes zeros and exits 0). hex_sizes=N
 // (default 1) runs the pipeline on each field at N hex sizes spread evenly
 // over H times 0.97 to 1.03 (the same field, its gradients scaled): the
 // integer-grid map of a field with defects changes a lot with a 1% change of
 // size, so one run is one sample. The row then gives the median, least and
-// largest coverage and hex count, the least scaled Jacobian, the most
+// largest coverage and hex count, the median ceiling, the least scaled Jacobian, the most
 // inverted hexes, and how many runs meet issue 15's target (every hex's
 // scaled Jacobian > 0, coverage >= 0.99).
 //
@@ -114,6 +116,9 @@ struct Hex_run {
   bool mip_failed = false;
   std::size_t hexes = 0, inverted = 0;
   double sj_min = 0, sj_median = 0, coverage = 0;
+  // The coverage the boundary's curvature allows (hex_mesh_quality.py): with
+  // the hex mesh's boundary edges, and with edges of the hex size asked for.
+  double ceiling = 0, ceiling_at_h = 0;
   bool meets_target() const { return error.empty() && inverted == 0 && coverage >= 0.99; }
 };
 
@@ -200,9 +205,11 @@ Hex_run hex_pipeline(const Hex_tools& tools, const CGAL_ext::IO::Medit_mesh& mes
   const std::string hx = shell_quote(tools.hexex) + " " + path("param.hexex") + " " + path("hex.ovm") + " > " +
                          path("hexex.log") + " 2>&1";
   if (q.error.empty() && std::system(hx.c_str()) != 0) q.error = "hexex failed";
+  char hex_size[32];
+  std::snprintf(hex_size, sizeof hex_size, "%.17g", h);
   const std::string qs = std::string("python3 ") + shell_quote(CGAL_EXT_HEX_QUALITY_SCRIPT) + " " + path("hex.ovm") +
-                         " --tets " + path("mesh.mesh") + " --json > " + path("quality.json") + " 2> " +
-                         path("quality.log");
+                         " --tets " + path("mesh.mesh") + " --hex-size " + hex_size + " --json > " +
+                         path("quality.json") + " 2> " + path("quality.log");
   if (q.error.empty() && std::system(qs.c_str()) != 0) q.error = "no hex mesh";
   if (q.error.empty()) {
     const nlohmann::json j = nlohmann::json::parse(slurp(dir / "quality.json"), nullptr, /*allow_exceptions=*/false);
@@ -214,6 +221,13 @@ Hex_run hex_pipeline(const Hex_tools& tools, const CGAL_ext::IO::Medit_mesh& mes
       q.sj_median = json_number(sj, "median");
       q.inverted = std::size_t(json_number(sj, "count_le_0"));
       q.coverage = json_number(j, "coverage");
+      const auto c = j.find("coverage_ceiling");
+      q.ceiling = q.ceiling_at_h = std::nan("");
+      if (c != j.end() && c->is_object()) {
+        q.ceiling = json_number(*c, "estimate");
+        const auto at = c->find("at_hex_size");
+        if (at != c->end() && at->is_object()) q.ceiling_at_h = json_number(*at, "estimate");
+      }
     }
   }
   if (q.error.empty()) fs::remove_all(dir);
@@ -314,17 +328,21 @@ void print_row(const std::string& name, const char* variant, const Quality& q, d
     if (!r.error.empty())
       std::printf("%-22s %-12s   hex pipeline: %s\n", name.c_str(), variant, r.error.c_str());
     else
-      std::printf("%-22s %-12s   hexes %zu, scaled Jacobian min %.3f median %.3f, <= 0: %zu, coverage %.4f%s\n",
-                  name.c_str(), variant, r.hexes, r.sj_min, r.sj_median, r.inverted, r.coverage,
+      std::printf("%-22s %-12s   hexes %zu, scaled Jacobian min %.3f median %.3f, <= 0: %zu, coverage %.4f "
+                  "(ceiling %.4f, at the size asked for %.4f)%s\n",
+                  name.c_str(), variant, r.hexes, r.sj_min, r.sj_median, r.inverted, r.coverage, r.ceiling,
+                  r.ceiling_at_h,
                   r.mip_failed ? " (MIP)" : "");
   } else if (q.hex_runs.size() > 1) {
-    std::vector<double> coverage, hexes;
+    std::vector<double> coverage, hexes, ceiling, ceiling_at_h;
     double sj_min = 1;
     std::size_t inverted = 0, met = 0, mip = 0;
     for (const Hex_run& r : q.hex_runs) {
       mip += r.mip_failed;
       if (!r.error.empty()) continue;
       coverage.push_back(r.coverage);
+      if (std::isfinite(r.ceiling)) ceiling.push_back(r.ceiling);
+      if (std::isfinite(r.ceiling_at_h)) ceiling_at_h.push_back(r.ceiling_at_h);
       hexes.push_back(double(r.hexes));
       sj_min = std::min(sj_min, r.sj_min);
       inverted = std::max(inverted, r.inverted);
@@ -341,11 +359,12 @@ void print_row(const std::string& name, const char* variant, const Quality& q, d
       return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
     };
     std::printf("%-22s %-12s   %zu sizes, %zu hex meshes: hexes %.0f (%.0f-%.0f), coverage %.4f (%.4f-%.4f), "
-                "scaled Jacobian min %.3f, most <= 0: %zu, target met %zu of %zu%s\n",
+                "ceiling %.4f (at the sizes asked for %.4f), scaled Jacobian min %.3f, most <= 0: %zu, target met %zu of %zu%s\n",
                 name.c_str(), variant, n, coverage.size(), median(hexes),
                 *std::min_element(hexes.begin(), hexes.end()), *std::max_element(hexes.begin(), hexes.end()),
                 median(coverage), *std::min_element(coverage.begin(), coverage.end()),
-                *std::max_element(coverage.begin(), coverage.end()), sj_min, inverted, met, n,
+                *std::max_element(coverage.begin(), coverage.end()), ceiling.empty() ? std::nan("") : median(ceiling),
+                ceiling_at_h.empty() ? std::nan("") : median(ceiling_at_h), sj_min, inverted, met, n,
                 mip ? (" (" + std::to_string(mip) + " MIP)").c_str() : "");
   }
 }
@@ -435,8 +454,9 @@ int main(int argc, char** argv) {
   if (tools.enabled())
     std::printf("Hex meshes: CubeCover's integergrid (%s) and HexEx (%s), hexes of %.4g times the bounding-box\n"
                 "diagonal (%d sizes from %.4g to %.4g times it: median (least-largest)), measured by\n"
-                "scripts/hex_mesh_quality.py (Verdict's scaled Jacobian; coverage: hex volume over tet volume; target:\n"
-                "every scaled Jacobian > 0 and coverage >= 0.99).\n",
+                "scripts/hex_mesh_quality.py (Verdict's scaled Jacobian; coverage: hex volume over tet volume; its\n"
+                "ceiling: what the boundary's curvature leaves to hexes with the hex mesh's boundary edges and with\n"
+                "edges of the size asked for; target: every scaled Jacobian > 0 and coverage >= 0.99).\n",
                 tools.integergrid.c_str(), tools.hexex.c_str(), tools.fraction, tools.sizes, tools.size(1, 0),
                 tools.size(1, tools.sizes - 1));
   std::printf("\n");

@@ -44,6 +44,27 @@ positive value when a frame has a zero-length vector; here such a frame counts
 Volume: exact volume of the trilinear hex (det J integrated with 2x2x2 Gauss
 points, exact since det J has degree <= 2 in each variable), signed.  Coverage
 uses the signed sum, so a globally inverted mesh shows up as negative.
+
+Coverage ceiling (with --tets): the coverage that hexes with this boundary
+edge length can reach at best on the curved parts of the boundary.  A
+boundary quad of side l has its corners on the surface and is bilinear in
+between, so it cuts below a convex surface by 2H l^2 / 12 on average (the
+mean of u (l - u) k / 2 over the square; 2H = k1 + k2, whatever the quad's
+orientation), and bulges over a concave one.  The tet boundary's own
+triangles, with corners on the same surface, already cut 2H lt^2 / 16 (the
+mean of the barycentric products, 1/12, times |e|^2 H over three edges, lt^2
+the mean squared boundary edge).  So the hexes lose (l^2 / 12 - lt^2 / 16)
+times the integral of 2H, which on the faceted tet boundary is sum |e|
+theta_e over its edges (theta_e: the turning angle between the two outward
+normals, negative where concave); edges turning by --feature-angle or more
+(default 40, generate's) are left out, since hex edges follow those creases.
+l^2 is the mean squared length of the edges of the hex mesh's boundary
+quads (with --hex-size L, the ceiling for quads of edge L is given too: what
+hexes of the size asked for could reach).  ceiling = 1 - max(0, l^2 / 12 - lt^2 / 16) sum |e| theta_e / tet
+volume.  A second-order estimate: on unit balls (radially mapped grids of 5
+to 10 hexes per side in tet meshes 2 to 4 times finer) it lies 0.001 to
+0.004 above the coverage that hexes with vertices on the tets' boundary
+reach.
 """
 
 import argparse
@@ -211,6 +232,14 @@ def sub(a, b):
     return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
 
 
+def dot(a, b):
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
 def det3(a, b, c):
     return (a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2])
             + a[2] * (b[0] * c[1] - b[1] * c[0]))
@@ -302,7 +331,77 @@ def summary(vals, keys=("min", "median", "mean", "max")):
     return {k: v for k, v in s.items() if k == "count" or k in keys}
 
 
-def evaluate(hex_path, tet_path=None):
+def boundary_turning(points, tets, feature_angle_deg):
+    """Over the boundary edges of a tet mesh turning by less than
+    feature_angle_deg: sum |e| theta_e (theta_e signed, positive where the
+    boundary is convex), the integral of twice the mean curvature; and the
+    root mean square length of all boundary edges."""
+    faces = {}
+    for t in tets:
+        for k in range(4):
+            f = tuple(sorted(t[:k] + t[k + 1:]))
+            faces[f] = None if f in faces else t[k]   # None: shared by two tets
+    normals, by_edge = [], {}
+    for f, opposite in faces.items():
+        if opposite is None:
+            continue
+        a, b, c = (points[v] for v in f)
+        n = cross(sub(b, a), sub(c, a))
+        if dot(n, sub(points[opposite], a)) > 0:  # outward: away from the tet
+            n = tuple(-x for x in n)
+        length = norm(n)
+        if length == 0:
+            continue
+        normals.append((tuple(x / length for x in n), f))
+        for e in ((f[0], f[1]), (f[0], f[2]), (f[1], f[2])):
+            by_edge.setdefault(e, []).append(len(normals) - 1)
+    total, smooth, features, non_manifold, sq = 0.0, 0, 0, 0, 0.0
+    for (u, v), ids in by_edge.items():
+        sq += norm(sub(points[v], points[u])) ** 2
+        if len(ids) != 2:
+            non_manifold += 1
+            continue
+        (n1, f1), (n2, f2) = normals[ids[0]], normals[ids[1]]
+        theta = math.atan2(norm(cross(n1, n2)), dot(n1, n2))  # exact 0 on flat parts, unlike acos
+        if theta >= math.radians(feature_angle_deg):
+            features += 1
+            continue
+        w = next(x for x in f2 if x != u and x != v)  # convex: f2 bends away from n1
+        if dot(n1, sub(points[w], points[u])) > 0:
+            theta = -theta
+        total += norm(sub(points[v], points[u])) * theta
+        smooth += 1
+    return {"integral_2H": total, "smooth_edges": smooth, "feature_edges": features,
+            "non_manifold_edges": non_manifold,
+            "tet_boundary_edge_rms": math.sqrt(sq / len(by_edge)) if by_edge else 0.0}
+
+
+def boundary_quad_edges(hexes):
+    """The edges (vertex pairs) of the quads on the boundary of a hex mesh."""
+    count = {}
+    for h in hexes:
+        for f in HEX_FACES:
+            key = frozenset(h[i] for i in f)
+            count[key] = count.get(key, 0) + 1
+    edges = set()
+    for h in hexes:
+        for f in HEX_FACES:
+            if count[frozenset(h[i] for i in f)] == 1:
+                for i in range(4):
+                    a, b = h[f[i]], h[f[(i + 1) % 4]]
+                    edges.add((min(a, b), max(a, b)))
+    return edges
+
+
+def coverage_ceiling(l2, turning, tet_volume):
+    """The coverage ceiling for boundary quads of mean squared edge l2 (see the top)."""
+    if tet_volume <= 0:
+        return None
+    cut = max(0.0, l2 / 12 - turning["tet_boundary_edge_rms"] ** 2 / 16)
+    return 1 - cut * turning["integral_2H"] / tet_volume
+
+
+def evaluate(hex_path, tet_path=None, feature_angle_deg=40.0, hex_size=None):
     """The report as a dict, plus the hexes (VTK order) and their scaled Jacobians."""
     points, cells = read_ovm(hex_path)
     hexes, other = [], {}
@@ -345,6 +444,17 @@ def evaluate(hex_path, tet_path=None):
         r["tets"] = {"file": tet_path, "tetrahedra": len(tets), "volume": tv,
                      "negative_tets": sum(x < 0 for x in dets)}
         r["coverage"] = r["hex_volume"]["total"] / tv if tv > 0 else None
+        turning = boundary_turning(tp, tets, feature_angle_deg)
+        quad_edges = boundary_quad_edges(hexes)
+        l2 = (sum(norm(sub(points[b], points[a])) ** 2 for a, b in quad_edges) / len(quad_edges)
+              if quad_edges else 0.0)
+        r["coverage_ceiling"] = dict(
+            turning, feature_angle_deg=feature_angle_deg, boundary_quad_edges=len(quad_edges),
+            boundary_quad_edge_rms=math.sqrt(l2),
+            estimate=coverage_ceiling(l2, turning, tv))
+        if hex_size is not None:
+            r["coverage_ceiling"]["at_hex_size"] = {
+                "hex_size": hex_size, "estimate": coverage_ceiling(hex_size ** 2, turning, tv)}
 
     cos_max = math.cos(math.radians(AXIS_ANGLE_DEG))
     lengths, by_axis = [], [[], [], []]
@@ -412,6 +522,16 @@ def print_text(r, out):
         w("tet mesh %s: %d tetrahedra, volume %s  (negatively oriented: %d)\n" % (
             t["file"], t["tetrahedra"], g(t["volume"]), t["negative_tets"]))
         w("coverage (hex volume / tet volume) %s\n" % g(r["coverage"]))
+        c = r["coverage_ceiling"]
+        w("coverage ceiling from the boundary's curvature %s  (boundary quad edges: %d, rms length %s;\n"
+          "  tet boundary: rms edge %s, integral of 2H %s over %d edges, %d edges at or over %g deg left out,\n"
+          "  %d non-manifold)\n" % (
+              g(c["estimate"]), c["boundary_quad_edges"], g(c["boundary_quad_edge_rms"]),
+              g(c["tet_boundary_edge_rms"]), g(c["integral_2H"]), c["smooth_edges"], c["feature_edges"],
+              c["feature_angle_deg"], c["non_manifold_edges"]))
+        if "at_hex_size" in c:
+            w("coverage ceiling for boundary quads of edge %s (--hex-size) %s\n" % (
+                g(c["at_hex_size"]["hex_size"]), g(c["at_hex_size"]["estimate"])))
     e, a = r["edge_length"], r["edge_length_by_axis"]
     w("edge length (%d edges): mean %s  median %s  min %s  max %s\n" % (
         e["count"], g(e["mean"]), g(e["median"]), g(e["min"]), g(e["max"])))
@@ -433,11 +553,20 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description="Quality report for a HexEx hex mesh (OVM ASCII).")
     ap.add_argument("hexmesh", metavar="HEX.ovm", help="hex mesh in OpenVolumeMesh ASCII format")
     ap.add_argument("--tets", metavar="TET.mesh", help="input tet mesh (Medit) for the coverage")
+    ap.add_argument("--feature-angle", metavar="DEG", type=float, default=40.0,
+                    help="for the coverage ceiling: boundary edges turning by this or more are creases "
+                         "that hexes follow (default 40, generate's)")
+    ap.add_argument("--hex-size", metavar="L", type=float,
+                    help="also give the coverage ceiling for boundary quads of edge L (the hex size asked for)")
     ap.add_argument("--json", action="store_true", help="print a JSON object instead of text")
     ap.add_argument("--vtu", metavar="OUT.vtu", help="also write the hexes as VTK XML with scaled_jacobian")
     args = ap.parse_args(argv)
     try:
-        r, hexes, points, sjs = evaluate(args.hexmesh, args.tets)
+        if not 0 <= args.feature_angle <= 180:
+            raise InputError("--feature-angle %g: not in [0, 180]" % args.feature_angle)
+        if args.hex_size is not None and not (args.hex_size > 0 and math.isfinite(args.hex_size)):
+            raise InputError("--hex-size %g: not a positive length" % args.hex_size)
+        r, hexes, points, sjs = evaluate(args.hexmesh, args.tets, args.feature_angle, args.hex_size)
         if args.vtu:
             write_vtu(args.vtu, points, hexes, sjs)
     except InputError as err:

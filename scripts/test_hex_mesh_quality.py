@@ -118,6 +118,29 @@ End
 """
 
 
+def medit_tets(points, hexes):
+    """A Medit tet mesh of hexes (VTK order), each split into the 6 tets
+    around its diagonal 0-6 (conforming when all hexes of a grid do so)."""
+    tets = [[h[a], h[b], h[c], h[d]] for h in hexes
+            for a, b, c, d in ((0, 1, 2, 6), (0, 5, 1, 6), (0, 2, 3, 6), (0, 3, 7, 6), (0, 4, 5, 6), (0, 7, 4, 6))]
+    return ("MeshVersionFormatted 2\nDimension 3\nVertices\n%d\n%s\nTetrahedra\n%d\n%s\nEnd\n" % (
+        len(points), "\n".join("%.17g %.17g %.17g 0" % p for p in points),
+        len(tets), "\n".join("%d %d %d %d 0" % tuple(v + 1 for v in t) for t in tets)))
+
+
+def ball_grid(n):
+    """An n x n x n grid of [-1,1]^3 mapped radially onto the unit ball (the
+    cube's faces onto the sphere): points and hexes (VTK order)."""
+    points, hexes = grid(n, n, n, 2.0 / n, 2.0 / n, 2.0 / n)
+    mapped = []
+    for p in points:
+        q = [x - 1.0 for x in p]
+        r = math.sqrt(sum(x * x for x in q))
+        s = max(abs(x) for x in q) / r if r > 0 else 0.0
+        mapped.append(tuple(x * s for x in q))
+    return mapped, hexes
+
+
 class HexMeshQualityTest(unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()
@@ -224,9 +247,67 @@ class HexMeshQualityTest(unittest.TestCase):
         self.assertAlmostEqual(r["tets"]["volume"], 2.0, places=14)
         self.assertAlmostEqual(r["coverage"], 1.0, places=14)
         self.assertEqual(r["edge_length"]["count"], 20)
+        # flat faces and right-angled creases: nothing cut, a ceiling of exactly 1
+        c = r["coverage_ceiling"]
+        self.assertEqual((c["integral_2H"], c["estimate"], c["non_manifold_edges"]), (0.0, 1.0, 0))
+        self.assertEqual(c["feature_edges"], 16)  # the box's 12 edges, those along x in two
+        self.assertEqual(c["boundary_quad_edges"], 20)
         # one hex of the two: half the box is covered
         r = self.report(points, hexes[:1], BOX_MESH)
         self.assertAlmostEqual(r["coverage"], 0.5, places=14)
+
+    def test_coverage_ceiling_of_a_ridge_and_a_valley(self):
+        # Two unit boxes whose top middle edge is raised (a convex ridge) or
+        # lowered (a concave valley) by d: the only boundary edge turning by
+        # less than 40 degrees, by 2 atan(d), over length 1.
+        for d in (0.1, -0.1):
+            points, hexes = grid(2, 1, 1)
+            points = [(x, y, z + d if (x, z) == (1, 1) else z) for x, y, z in points]
+            r = self.report(points, hexes, medit_tets(points, hexes))
+            self.assertAlmostEqual(r["coverage"], 1.0, places=14)  # planar faces: hexes fill the tets
+            c = r["coverage_ceiling"]
+            self.assertAlmostEqual(c["integral_2H"], 2 * math.atan(d), places=14)
+            l2 = (4 + 4 * (1 + d * d) + 6 + 4 + 2 * (1 + d) ** 2) / 20
+            self.assertAlmostEqual(c["boundary_quad_edge_rms"] ** 2, l2, places=14)
+            # the tets' boundary: each face of the boxes in two triangles, so
+            # the quads' 20 edges and one diagonal per quad (10 quads; the
+            # split around diagonal 0-6 cuts the first box's sides, y = 0 and
+            # y = 1, through its raised corner, the second box's not)
+            diagonals = [2, 2, 2, 2, 2, 2, 2 + d * d, 2 + d * d, 1 + (1 + d) ** 2, 1 + (1 + d) ** 2]
+            lt2 = (20 * l2 + sum(diagonals)) / 30
+            self.assertAlmostEqual(c["tet_boundary_edge_rms"] ** 2, lt2, places=14)
+            self.assertAlmostEqual(c["estimate"], 1 - (l2 / 12 - lt2 / 16) * 2 * math.atan(d) / (2 + d),
+                                   places=14)
+            self.assertLess(c["estimate"], 1) if d > 0 else self.assertGreater(c["estimate"], 1)
+            # at 5 degrees the ridge is a crease that hexes follow
+            r = hmq.evaluate(self.path("hex.ovm"), self.path("tets.mesh"), feature_angle_deg=5)[0]
+            self.assertEqual(r["coverage_ceiling"]["estimate"], 1.0)
+
+    def test_coverage_ceiling_predicts_a_ball(self):
+        # The unit ball as an n x n x n grid mapped radially, in a tet mesh of
+        # the m x m x m one: the hexes' boundary vertices lie on the tets'
+        # boundary, and their bilinear quads cut below it by what the
+        # ceiling says, to within its second-order accuracy.
+        for n, m in ((6, 12), (5, 15)):
+            points, hexes = ball_grid(n)
+            tpoints, thexes = ball_grid(m)
+            r = self.report(points, hexes, medit_tets(tpoints, thexes))
+            c = r["coverage_ceiling"]
+            self.assertEqual((c["feature_edges"], c["non_manifold_edges"]), (0, 0))
+            self.assertAlmostEqual(c["integral_2H"], 8 * math.pi, delta=0.005 * 8 * math.pi)
+            self.assertLess(r["coverage"], 0.98)  # the curvature costs hexes of this size 2 to 4%
+            self.assertGreater(c["estimate"], r["coverage"])
+            self.assertLess(c["estimate"], r["coverage"] + 0.005)
+        # the ceiling at a given hex size: the same formula at that edge
+        rc, out, err = self.run_main(self.path("hex.ovm"), "--tets", self.path("tets.mesh"), "--json",
+                                     "--hex-size", "%.17g" % c["boundary_quad_edge_rms"])
+        self.assertEqual((rc, err), (0, ""))
+        at = json.loads(out)["coverage_ceiling"]["at_hex_size"]
+        self.assertAlmostEqual(at["estimate"], c["estimate"], places=14)
+        rc, out, err = self.run_main(self.path("hex.ovm"), "--tets", self.path("tets.mesh"), "--hex-size", "0.2")
+        self.assertIn("coverage ceiling for boundary quads of edge 0.2 (--hex-size)", out)
+        self.assertError([self.path("hex.ovm"), "--hex-size", "-1"], "--hex-size -1: not a positive length")
+        self.assertError([self.path("hex.ovm"), "--feature-angle", "200"], "--feature-angle 200: not in [0, 180]")
 
     def test_anisotropic_edges_and_families(self):
         r = self.report(*grid(2, 3, 1, 0.2, 0.1, 0.4))
