@@ -36,7 +36,8 @@
 // size, so one run is one sample. The row then gives the median, least and
 // largest coverage and hex count, the median ceiling, the least scaled Jacobian, the most
 // inverted hexes, and how many runs meet issue 15's target (every hex's
-// scaled Jacobian > 0, coverage >= 0.99).
+// scaled Jacobian > 0, coverage >= 0.99), flagged out of reach where the
+// ceiling at the sizes asked for is below 0.99.
 //
 // INPUT: builtin:NAME, a closed surface (.off .obj .stl .ply) meshed by
 // Mesh_3, or a tet mesh (.mesh, e.g. written by TetGen or Gmsh). Without
@@ -329,9 +330,9 @@ void print_row(const std::string& name, const char* variant, const Quality& q, d
       std::printf("%-22s %-12s   hex pipeline: %s\n", name.c_str(), variant, r.error.c_str());
     else
       std::printf("%-22s %-12s   hexes %zu, scaled Jacobian min %.3f median %.3f, <= 0: %zu, coverage %.4f "
-                  "(ceiling %.4f, at the size asked for %.4f)%s\n",
+                  "(ceiling %.4f, at the size asked for %.4f%s)%s\n",
                   name.c_str(), variant, r.hexes, r.sj_min, r.sj_median, r.inverted, r.coverage, r.ceiling,
-                  r.ceiling_at_h,
+                  r.ceiling_at_h, r.ceiling_at_h < 0.99 ? ": 0.99 out of reach" : "",
                   r.mip_failed ? " (MIP)" : "");
   } else if (q.hex_runs.size() > 1) {
     std::vector<double> coverage, hexes, ceiling, ceiling_at_h;
@@ -358,13 +359,16 @@ void print_row(const std::string& name, const char* variant, const Quality& q, d
       std::sort(v.begin(), v.end());
       return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
     };
+    const double c = ceiling.empty() ? std::nan("") : median(ceiling);
+    const double c_at_h = ceiling_at_h.empty() ? std::nan("") : median(ceiling_at_h);
     std::printf("%-22s %-12s   %zu sizes, %zu hex meshes: hexes %.0f (%.0f-%.0f), coverage %.4f (%.4f-%.4f), "
-                "ceiling %.4f (at the sizes asked for %.4f), scaled Jacobian min %.3f, most <= 0: %zu, target met %zu of %zu%s\n",
+                "ceiling %.4f (at the sizes asked for %.4f), scaled Jacobian min %.3f, most <= 0: %zu, "
+                "target met %zu of %zu%s%s\n",
                 name.c_str(), variant, n, coverage.size(), median(hexes),
                 *std::min_element(hexes.begin(), hexes.end()), *std::max_element(hexes.begin(), hexes.end()),
                 median(coverage), *std::min_element(coverage.begin(), coverage.end()),
-                *std::max_element(coverage.begin(), coverage.end()), ceiling.empty() ? std::nan("") : median(ceiling),
-                ceiling_at_h.empty() ? std::nan("") : median(ceiling_at_h), sj_min, inverted, met, n,
+                *std::max_element(coverage.begin(), coverage.end()), c, c_at_h, sj_min, inverted, met, n,
+                c_at_h < 0.99 ? " (coverage 0.99 out of reach at these sizes)" : "",
                 mip ? (" (" + std::to_string(mip) + " MIP)").c_str() : "");
   }
 }
