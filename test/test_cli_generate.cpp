@@ -113,6 +113,11 @@ TEST_CASE("generate writes the six files, and the identity metric on a cube give
   CHECK(number(report, "/sharp_features/corners") == 8);
   CHECK(number(report, "/sharp_features/curve_vertices") > 0);
   CHECK(r.err.find("sharp features") != std::string::npos);
+  // Flat faces and right-angled edges: hexes can cover it all at any size.
+  CHECK(number(report, "/hex_coverage_ceiling/coverage") == 1);
+  CHECK(number(report, "/hex_coverage_ceiling/smooth_turning") == 0);
+  CHECK(!report["hex_coverage_ceiling"].contains("hex_size_factor_for_0_99")); // every size reaches 0.99
+  CHECK(r.err.find("coverage ceiling (curvature)     1.000 at this hex size; 0.99 within reach") != std::string::npos);
 
   // .fra: the parameter gradients, +-e_k / h.
   const auto frames = CGAL_ext::IO::read_fra((out / "frames.fra").string());
@@ -382,6 +387,17 @@ TEST_CASE("generate meshes a built-in shape with Mesh_3", "[cli][generate]") {
   const double volume = 4.0 / 3 * M_PI; // the unit ball, approximated from inside
   CHECK(number(report, "/expected_hexes") < volume / (0.35 * 0.35 * 0.35));
   CHECK(number(report, "/expected_hexes") > 0.9 * volume / (0.35 * 0.35 * 0.35));
+  // Hexes of 0.35 on the unit sphere: the integral of 2H is 8 pi, 8 pi / 0.35
+  // in the metric; the ceiling follows from the report's own numbers.
+  const double turning = number(report, "/hex_coverage_ceiling/smooth_turning");
+  CHECK(turning == Approx(8 * M_PI / 0.35).epsilon(0.03));
+  const double rms = number(report, "/hex_coverage_ceiling/boundary_edge_rms");
+  const double ceiling = number(report, "/hex_coverage_ceiling/coverage");
+  CHECK(ceiling < 1);
+  CHECK(ceiling == Approx(1 - std::max(0.0, 1.0 / 12 - rms * rms / 16) * turning / number(report, "/expected_hexes")));
+  const double factor = number(report, "/hex_coverage_ceiling/hex_size_factor_for_0_99");
+  CHECK(factor < 1); // 0.99 needs smaller hexes than 0.35 on a sphere of radius 1
+  CHECK(r.err.find("0.99 needs hexes " + CGAL_ext::format_number(factor, 2) + " times as large") != std::string::npos);
   for (const auto& f : CGAL_ext::IO::read_fra((out / "frames.fra").string()))
     for (int k = 0; k < 3; ++k) CHECK(std::hypot(f[3 * k], f[3 * k + 1], f[3 * k + 2]) == Approx(1 / 0.35));
   // The ball's field is singular; every singular edge is in singularities.vtu

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace CGAL_ext {
@@ -95,6 +96,18 @@ inline nlohmann::ordered_json pipeline_straightening_json(const Pipeline_frame_f
           {"non_meshable_after", frames.non_meshable_edges}};
 }
 
+// The "hex_coverage_ceiling" object: numbers, null where not finite; the
+// factor is left out when every hex size reaches 0.99 (it is +infinity).
+inline nlohmann::ordered_json pipeline_coverage_ceiling_json(const Pipeline_frame_field& frames) {
+  auto number = [](double x) { return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr); };
+  nlohmann::ordered_json j = {{"coverage", number(frames.coverage_ceiling)}};
+  if (frames.hex_size_factor_for_coverage_99 != std::numeric_limits<double>::infinity())
+    j["hex_size_factor_for_0_99"] = number(frames.hex_size_factor_for_coverage_99);
+  j["smooth_turning"] = number(frames.smooth_turning);
+  j["boundary_edge_rms"] = number(frames.boundary_edge_rms);
+  return j;
+}
+
 } // namespace internal
 
 /// \ingroup PkgCGALExtPipeline
@@ -144,6 +157,7 @@ inline nlohmann::ordered_json pipeline_report(const Pipeline_tet_mesh& mesh, con
         {"curve_vertices", st.feature_curve_vertices},
         {"corners", st.feature_corners},
         {"tets", st.feature_tets}}},
+      {"hex_coverage_ceiling", internal::pipeline_coverage_ceiling_json(frames)},
       {"repair", internal::pipeline_repair_json(frames.repair)},
       {"straightening", internal::pipeline_straightening_json(frames)},
       {"max_transport_angle_deg", st.max_transport_angle * 180 / M_PI},

@@ -104,6 +104,9 @@ public:
     /// the outward Euclidean unit normals of its two boundary facets (that of
     /// smaller sorted vertex indices first); zero if not two facets
     std::array<Eigen::Vector3d, 2> normals = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+    /// its length in the metric times its signed turning angle in radians
+    /// (positive where the boundary is convex); 0 if not two facets
+    double turning = 0;
   };
 
   /// Finds the features.
@@ -202,6 +205,20 @@ public:
   /// The number of boundary facets.
   /// \returns the number of facets between a domain cell and a cell outside it
   std::size_t number_of_boundary_facets() const { return facets_.size(); }
+  /// The turning of the boundary's smooth part: over the boundary edges with
+  /// two facets that are not feature edges (dropped kinks included), the
+  /// edge's length in the metric times the angle between the facets' metric
+  /// normals, signed (negative where the boundary is concave). On a faceted
+  /// surface this is the integral of twice the mean curvature, `k1 + k2`, over
+  /// its smooth part, as the metric measures it (`A` at the edge's midpoint
+  /// for both, the metric's derivatives left out); `hex_coverage_ceiling()`
+  /// uses it.
+  /// \returns the sum, in units of metric length
+  double smooth_turning() const { return smooth_turning_; }
+  /// The root mean square length in the metric of the boundary edges (all
+  /// edges of the boundary facets, each once).
+  /// \returns the length, in units of metric length (0 without boundary facets)
+  double boundary_edge_rms() const { return boundary_edge_rms_; }
 
 private:
   // The boundary facets of the domain, in the order of their sorted vertex triples.
@@ -229,6 +246,8 @@ private:
   // The boundary edges with their facets; the feature edges among them.
   void find_feature_edges(const Metric_field& field, double cos_angle) {
     std::vector<std::tuple<std::size_t, std::size_t, std::size_t>> edge_facet; // (a, b, facet)
+    double squared_lengths = 0;
+    std::size_t boundary_edges = 0;
     for (std::size_t i = 0; i < facets_.size(); ++i)
       for (int k = 0; k < 3; ++k)
         for (int m = k + 1; m < 3; ++m) edge_facet.emplace_back(facets_[i].v[k], facets_[i].v[m], i);
@@ -241,20 +260,33 @@ private:
       const std::size_t a = std::get<0>(edge_facet[first]), b = std::get<1>(edge_facet[first]);
       Feature_edge e{a, b, 180, int(last - first)};
       bool feature = e.facets != 2;
+      // A is linear along the edge: its value at the midpoint is the mean.
+      const Eigen::Matrix3d A = 0.5 * (field.sqrt_metric(vertices_[a]) + field.sqrt_metric(vertices_[b]));
+      const Eigen::Vector3d pa = internal::to_eigen_vector(vertices_[a]->point());
+      const double length = (A * (internal::to_eigen_vector(vertices_[b]->point()) - pa)).norm();
+      squared_lengths += length * length;
+      ++boundary_edges;
       if (!feature) {
-        e.normals = {facets_[std::get<2>(edge_facet[first])].normal, facets_[std::get<2>(edge_facet[first + 1])].normal};
-        // A is linear along the edge: its value at the midpoint is the mean.
-        const Eigen::Matrix3d A_inv =
-            scaled_inverse(0.5 * (field.sqrt_metric(vertices_[a]) + field.sqrt_metric(vertices_[b])));
-        const Eigen::Vector3d d0 = (A_inv * facets_[std::get<2>(edge_facet[first])].normal).normalized();
-        const Eigen::Vector3d d1 = (A_inv * facets_[std::get<2>(edge_facet[first + 1])].normal).normalized();
+        const Facet& f0 = facets_[std::get<2>(edge_facet[first])];
+        const Facet& f1 = facets_[std::get<2>(edge_facet[first + 1])];
+        e.normals = {f0.normal, f1.normal};
+        const Eigen::Matrix3d A_inv = scaled_inverse(A);
+        const Eigen::Vector3d d0 = (A_inv * f0.normal).normalized();
+        const Eigen::Vector3d d1 = (A_inv * f1.normal).normalized();
         const double c = std::max(-1.0, std::min(1.0, d0.dot(d1)));
         e.angle_deg = std::acos(c) * 180 / M_PI;
         feature = c < cos_angle;
+        // Convex where f1 bends away from f0's outward normal (a linear map
+        // with det > 0 keeps convexity, so the Euclidean test serves).
+        const std::size_t w = f1.v[0] != a && f1.v[0] != b ? f1.v[0] : f1.v[1] != a && f1.v[1] != b ? f1.v[1] : f1.v[2];
+        const double sign = f0.normal.dot(internal::to_eigen_vector(vertices_[w]->point()) - pa) > 0 ? -1 : 1;
+        e.turning = sign * length * std::atan2(d0.cross(d1).norm(), d0.dot(d1)); // exact 0 where flat
+        if (!feature) smooth_turning_ += e.turning;
       }
       if (feature) edges_.push_back(e);
       first = last;
     }
+    boundary_edge_rms_ = boundary_edges ? std::sqrt(squared_lengths / double(boundary_edges)) : 0;
   }
 
   // Feature curves of fewer than 3 edges that meet no other feature (a
@@ -276,7 +308,7 @@ private:
     std::vector<Feature_edge> kept;
     for (const Feature_edge& e : edges_)
       if (e.facets != 2 || size[root(e.source)] >= 3) kept.push_back(e);
-      else ++dropped_;
+      else ++dropped_, smooth_turning_ += e.turning;
     edges_.swap(kept);
   }
 
@@ -380,6 +412,7 @@ private:
   std::vector<Feature_vertex_kind> kind_;
   std::vector<Eigen::Matrix3d> axes_; // tangent in column 0 (curve) or the corner's axes
   std::size_t curve_vertices_ = 0, corners_ = 0, dropped_ = 0;
+  double smooth_turning_ = 0, boundary_edge_rms_ = 0;
 };
 
 } // namespace CGAL_ext

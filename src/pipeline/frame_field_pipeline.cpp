@@ -5,6 +5,7 @@
 // tet mesh, the scaled metric, the frame field and its singularities. The
 // one translation unit that instantiates the frame field on the default types.
 #include <CGAL_ext/Frame_field_pipeline.h>
+#include <CGAL_ext/Hex_coverage_ceiling_3.h>
 
 #include <CGAL_ext/IO/Medit_mesh.h>
 #include <CGAL_ext/Input_error.h>
@@ -228,6 +229,12 @@ Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric
   r.frames = std::make_unique<Pipeline_frame_field_3>(*metric.field);
   Pipeline_frame_field_3& ff = *r.frames;
   ff.compute(options); // it reports its own stages
+  const Sharp_features_3<Pipeline_metric_field_3> boundary(*metric.field, options.feature_angle_deg);
+  r.smooth_turning = boundary.smooth_turning();
+  r.boundary_edge_rms = boundary.boundary_edge_rms();
+  r.coverage_ceiling = hex_coverage_ceiling(boundary, metric.expected_hexes);
+  r.hex_size_factor_for_coverage_99 =
+      hex_edge_for_coverage(r.smooth_turning, r.boundary_edge_rms, metric.expected_hexes, 0.99);
   Stage_clock clock(stage);
   if (repair) {
     r.repair = repair_singularities(ff, *repair);

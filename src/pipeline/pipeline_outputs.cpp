@@ -182,15 +182,26 @@ std::string pipeline_summary_text(const Pipeline_tet_mesh& mesh, const Pipeline_
   const std::string hex = metric.scaled ? format_number(metric.hex_size, 10) + " (" + metric.hex_size_rule + ")"
                                         : std::string("the metric's unit length");
   char buf[4096];
+  std::snprintf(buf, sizeof buf, "\n  %-32s %zu (%zu vertices)\n  %-32s %s\n  %-32s %s\n  %-32s %.0f\n", "tetrahedra",
+                frames.frames->size(), mesh.mesh.vertices.size(), "metric", metric.name.c_str(), "hex size", hex.c_str(),
+                "expected hexahedra", metric.expected_hexes);
+  std::string text = buf;
+  // What hexes of this size can cover of the curved boundary, and the size for 0.99.
+  const double ceiling = frames.coverage_ceiling, factor = frames.hex_size_factor_for_coverage_99;
+  if (std::isfinite(ceiling)) {
+    std::snprintf(buf, sizeof buf, "  %-32s %.3f at this hex size; %s\n", "coverage ceiling (curvature)", ceiling,
+                  ceiling >= 0.99 ? "0.99 within reach"
+                  : std::isfinite(factor)
+                      ? ("0.99 needs hexes " + format_number(factor, 2) + " times as large").c_str()
+                      : "0.99 out of reach");
+    text += buf;
+  }
   std::snprintf(buf, sizeof buf,
-                "\n  %-32s %zu (%zu vertices)\n  %-32s %s\n  %-32s %s\n  %-32s %.0f\n"
                 "  %-32s %.6g (per unit weight %.3g)\n  %-32s mean %.3g, median %.3g\n  %-32s mean %.3g, max %.3g\n"
                 "  %-32s %.3g\n  %-32s %zu edges, %zu corners (%.3g degrees), %zu tetrahedra follow them\n"
                 "  %-32s %zu%s%s%s\n  %-32s %zu (%zu closed), nodes %zu (junctions %zu, boundary ends %zu, interior "
                 "ends %zu)\n  %-32s %zu\n",
-                "tetrahedra", frames.frames->size(), mesh.mesh.vertices.size(), "metric", metric.name.c_str(),
-                "hex size", hex.c_str(), "expected hexahedra", metric.expected_hexes, "smoothness energy",
-                st.smoothness_energy, st.smoothness_energy / st.total_face_weight, "face angle (deg)", angles.mean_deg,
+                "smoothness energy", st.smoothness_energy, st.smoothness_energy / st.total_face_weight, "face angle (deg)", angles.mean_deg,
                 angles.median_deg, "boundary alignment error (deg)", st.boundary_error_mean_deg,
                 st.boundary_error_max_deg, "max |F^T g F - I|", st.max_orthonormality_error, "sharp features",
                 st.feature_edges, st.feature_corners, context.options.feature_angle_deg, st.feature_tets,
@@ -198,7 +209,7 @@ std::string pipeline_summary_text(const Pipeline_tet_mesh& mesh, const Pipeline_
                 types.empty() ? "" : ")", "singular curves", graph.curves.size(), graph.closed_curves,
                 graph.nodes.size(), graph.junctions, graph.boundary_ends, graph.interior_ends,
                 "non-meshable singular edges", frames.non_meshable_edges);
-  std::string text = buf;
+  text += buf;
   std::size_t listed = 0;
   for (const Singular_edge& s : frames.singular_edges) {
     if (is_meshable(s.type) || listed == 5) continue;
