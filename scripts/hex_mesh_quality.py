@@ -47,24 +47,29 @@ uses the signed sum, so a globally inverted mesh shows up as negative.
 
 Coverage ceiling (with --tets): the coverage that hexes with this boundary
 edge length can reach at best on the curved parts of the boundary.  A
-boundary quad of side l has its corners on the surface and is bilinear in
-between, so it cuts below a convex surface by 2H l^2 / 12 on average (the
-mean of u (l - u) k / 2 over the square; 2H = k1 + k2, whatever the quad's
-orientation), and bulges over a concave one.  The tet boundary's own
-triangles, with corners on the same surface, already cut 2H lt^2 / 16 (the
-mean of the barycentric products, 1/12, times |e|^2 H over three edges, lt^2
-the mean squared boundary edge).  So the hexes lose (l^2 / 12 - lt^2 / 16)
-times the integral of 2H, which on the faceted tet boundary is sum |e|
-theta_e over its edges (theta_e: the turning angle between the two outward
-normals, negative where concave); edges turning by --feature-angle or more
-(default 40, generate's) are left out, since hex edges follow those creases.
-l^2 is the mean squared length of the edges of the hex mesh's boundary
-quads (with --hex-size L, the ceiling for quads of edge L is given too: what
-hexes of the size asked for could reach).  ceiling = 1 - max(0, l^2 / 12 - lt^2 / 16) sum |e| theta_e / tet
-volume.  A second-order estimate: on unit balls (radially mapped grids of 5
-to 10 hexes per side in tet meshes 2 to 4 times finer) it lies 0.001 to
-0.004 above the coverage that hexes with vertices on the tets' boundary
-reach.
+boundary quad of side l has its corners on the tet mesh's boundary T and is
+bilinear in between.  Write T = S - g, with S the smooth surface that T
+facets (mean curvature H) and g >= 0 the facets' gap below it, 0 at the
+tet vertices.  Below T the quad cuts (S - I(S)) - (g - I(g)) on average, I
+the bilinear interpolation of the quad's corners: the first term is
+2H l^2 / 12 whatever the quad's orientation (2H = k1 + k2; the mean of
+u (l - u) k / 2 over the square), and the second averages to 0 when the
+corners fall anywhere on the facets, as HexEx's do (at tet vertices only it
+would be the facets' own gap, 2H lt^2 / 16 for facets of mean squared edge
+lt^2).  So the hexes miss l^2 / 12 times the integral of 2H, which on the
+faceted boundary is sum |e| theta_e over its edges (theta_e: the turning
+angle between the two outward normals, negative where concave, where the
+quads bulge out); edges turning by more than --feature-angle (default 40,
+generate's) are left out, since hex edges follow those creases (unlike
+generate, the script keeps lone kinks as creases).  l^2 is the mean squared
+length of the edges of the hex mesh's boundary quads (with --hex-size L,
+the ceiling for quads of edge L is given too: what hexes of the size asked
+for could reach).  ceiling = max(0, 1 - l^2 / 12 * sum |e| theta_e / tet
+volume).  A second-order estimate: on unit balls (radially mapped grids of
+5 to 7 hexes per side in tet meshes about twice as fine) it lies 0.0025 to
+0.0046 above the coverage that hexes with their vertices anywhere on the
+tets' facets reach, 0.008 above with 4 hexes per side, and 0.005 below when
+every quad corner is a tet vertex.
 """
 
 import argparse
@@ -332,10 +337,9 @@ def summary(vals, keys=("min", "median", "mean", "max")):
 
 
 def boundary_turning(points, tets, feature_angle_deg):
-    """Over the boundary edges of a tet mesh turning by less than
+    """Over the boundary edges of a tet mesh turning by at most
     feature_angle_deg: sum |e| theta_e (theta_e signed, positive where the
-    boundary is convex), the integral of twice the mean curvature; and the
-    root mean square length of all boundary edges."""
+    boundary is convex), the integral of twice the mean curvature."""
     faces = {}
     for t in tets:
         for k in range(4):
@@ -355,15 +359,14 @@ def boundary_turning(points, tets, feature_angle_deg):
         normals.append((tuple(x / length for x in n), f))
         for e in ((f[0], f[1]), (f[0], f[2]), (f[1], f[2])):
             by_edge.setdefault(e, []).append(len(normals) - 1)
-    total, smooth, features, non_manifold, sq = 0.0, 0, 0, 0, 0.0
+    total, smooth, features, non_manifold = 0.0, 0, 0, 0
     for (u, v), ids in by_edge.items():
-        sq += norm(sub(points[v], points[u])) ** 2
         if len(ids) != 2:
             non_manifold += 1
             continue
         (n1, f1), (n2, f2) = normals[ids[0]], normals[ids[1]]
         theta = math.atan2(norm(cross(n1, n2)), dot(n1, n2))  # exact 0 on flat parts, unlike acos
-        if theta >= math.radians(feature_angle_deg):
+        if theta > math.radians(feature_angle_deg):
             features += 1
             continue
         w = next(x for x in f2 if x != u and x != v)  # convex: f2 bends away from n1
@@ -372,8 +375,7 @@ def boundary_turning(points, tets, feature_angle_deg):
         total += norm(sub(points[v], points[u])) * theta
         smooth += 1
     return {"integral_2H": total, "smooth_edges": smooth, "feature_edges": features,
-            "non_manifold_edges": non_manifold,
-            "tet_boundary_edge_rms": math.sqrt(sq / len(by_edge)) if by_edge else 0.0}
+            "non_manifold_edges": non_manifold}
 
 
 def boundary_quad_edges(hexes):
@@ -397,8 +399,7 @@ def coverage_ceiling(l2, turning, tet_volume):
     """The coverage ceiling for boundary quads of mean squared edge l2 (see the top)."""
     if tet_volume <= 0:
         return None
-    cut = max(0.0, l2 / 12 - turning["tet_boundary_edge_rms"] ** 2 / 16)
-    return 1 - cut * turning["integral_2H"] / tet_volume
+    return max(0.0, 1 - l2 / 12 * turning["integral_2H"] / tet_volume)
 
 
 def evaluate(hex_path, tet_path=None, feature_angle_deg=40.0, hex_size=None):
@@ -524,11 +525,9 @@ def print_text(r, out):
         w("coverage (hex volume / tet volume) %s\n" % g(r["coverage"]))
         c = r["coverage_ceiling"]
         w("coverage ceiling from the boundary's curvature %s  (boundary quad edges: %d, rms length %s;\n"
-          "  tet boundary: rms edge %s, integral of 2H %s over %d edges, %d edges at or over %g deg left out,\n"
-          "  %d non-manifold)\n" % (
-              g(c["estimate"]), c["boundary_quad_edges"], g(c["boundary_quad_edge_rms"]),
-              g(c["tet_boundary_edge_rms"]), g(c["integral_2H"]), c["smooth_edges"], c["feature_edges"],
-              c["feature_angle_deg"], c["non_manifold_edges"]))
+          "  tet boundary: integral of 2H %s over %d edges, %d edges over %g deg left out, %d non-manifold)\n" % (
+              g(c["estimate"]), c["boundary_quad_edges"], g(c["boundary_quad_edge_rms"]), g(c["integral_2H"]),
+              c["smooth_edges"], c["feature_edges"], c["feature_angle_deg"], c["non_manifold_edges"]))
         if "at_hex_size" in c:
             w("coverage ceiling for boundary quads of edge %s (--hex-size) %s\n" % (
                 g(c["at_hex_size"]["hex_size"]), g(c["at_hex_size"]["estimate"])))
@@ -554,7 +553,7 @@ def main(argv=None):
     ap.add_argument("hexmesh", metavar="HEX.ovm", help="hex mesh in OpenVolumeMesh ASCII format")
     ap.add_argument("--tets", metavar="TET.mesh", help="input tet mesh (Medit) for the coverage")
     ap.add_argument("--feature-angle", metavar="DEG", type=float, default=40.0,
-                    help="for the coverage ceiling: boundary edges turning by this or more are creases "
+                    help="for the coverage ceiling: boundary edges turning by more than this are creases "
                          "that hexes follow (default 40, generate's)")
     ap.add_argument("--hex-size", metavar="L", type=float,
                     help="also give the coverage ceiling for boundary quads of edge L (the hex size asked for)")

@@ -391,10 +391,9 @@ TEST_CASE("generate meshes a built-in shape with Mesh_3", "[cli][generate]") {
   // in the metric; the ceiling follows from the report's own numbers.
   const double turning = number(report, "/hex_coverage_ceiling/smooth_turning");
   CHECK(turning == Approx(8 * M_PI / 0.35).epsilon(0.03));
-  const double rms = number(report, "/hex_coverage_ceiling/boundary_edge_rms");
   const double ceiling = number(report, "/hex_coverage_ceiling/coverage");
   CHECK(ceiling < 1);
-  CHECK(ceiling == Approx(1 - std::max(0.0, 1.0 / 12 - rms * rms / 16) * turning / number(report, "/expected_hexes")));
+  CHECK(ceiling == Approx(1 - turning / 12 / number(report, "/expected_hexes")));
   const double factor = number(report, "/hex_coverage_ceiling/hex_size_factor_for_0_99");
   CHECK(factor < 1); // 0.99 needs smaller hexes than 0.35 on a sphere of radius 1
   CHECK(r.err.find("0.99 needs hexes " + CGAL_ext::format_number(factor, 2) + " times as large") != std::string::npos);

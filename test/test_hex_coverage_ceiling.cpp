@@ -3,8 +3,8 @@
 //
 // The coverage ceiling of hexahedra on a curved boundary
 // (Hex_coverage_ceiling_3.h) and the boundary measures behind it
-// (Sharp_features_3::smooth_turning() and boundary_edge_rms()), against
-// values worked out by hand, in a metric and without.
+// (Sharp_features_3::smooth_turning()), against values worked out by hand,
+// in a metric and without.
 #include <CGAL_ext/Hex_coverage_ceiling_3.h>
 #include <CGAL_ext/Metric_field_3.h>
 #include <CGAL_ext/Sharp_features_3.h>
@@ -46,15 +46,6 @@ void ridge(double d, Tr& tr) {
   build_triangulation_from_tets(points, tets, std::vector<int>(tets.size(), 0), tr);
 }
 
-// The mean squared boundary edge of ridge(d): the 20 box edges (those at
-// x = 1 on top lengthened by d) and one diagonal per boundary quad (the
-// split cuts the first box's sides y = 0 and y = 1 through its moved corner).
-double ridge_edge_mean_square(double d) {
-  const double quad_edges = 4 + 4 * (1 + d * d) + 6 + 4 + 2 * (1 + d) * (1 + d);
-  const double diagonals = 6 * 2 + 2 * (2 + d * d) + 2 * (1 + (1 + d) * (1 + d));
-  return (quad_edges + diagonals) / 30;
-}
-
 } // namespace
 
 TEST_CASE("coverage ceiling of a ridge and a valley: the turning, its sign and the formula", "[coverage_ceiling]") {
@@ -65,19 +56,17 @@ TEST_CASE("coverage ceiling of a ridge and a valley: the turning, its sign and t
     const Features f(field, 40);
     // the only edge turning by less than 40 degrees: 2 atan(d) over length 1
     CHECK(f.smooth_turning() == Approx(2 * std::atan(d)).epsilon(1e-13));
-    const double lt2 = ridge_edge_mean_square(d);
-    CHECK(f.boundary_edge_rms() * f.boundary_edge_rms() == Approx(lt2).epsilon(1e-13));
     const double volume = field.metric_volume();
     REQUIRE(volume == Approx(2 + d).epsilon(1e-13));
     for (double l : {0.5, 1.0, 2.0}) {
-      const double expected = 1 - std::max(0.0, l * l / 12 - lt2 / 16) * 2 * std::atan(d) / (2 + d);
+      const double expected = 1 - l * l / 12 * 2 * std::atan(d) / (2 + d);
       CHECK(hex_coverage_ceiling(f, volume, l) == Approx(expected).epsilon(1e-13));
     }
-    // quads no larger than the boundary's facets cut nothing more than they do
-    CHECK(hex_coverage_ceiling(f, volume, 0.5) == 1.0);
-    // quads larger than the facets: convex, below 1; concave, they bulge out, above 1
-    if (d > 0) CHECK(hex_coverage_ceiling(f, volume, 2.0) < 1);
-    else CHECK(hex_coverage_ceiling(f, volume, 2.0) > 1);
+    // convex: below 1; concave, where quads bulge out: above 1
+    if (d > 0) CHECK(hex_coverage_ceiling(f, volume, 1.0) < 1);
+    else CHECK(hex_coverage_ceiling(f, volume, 1.0) > 1);
+    // hexes far too large for the curvature: 0, not below
+    if (d > 0) CHECK(hex_coverage_ceiling(f, volume, 100.0) == 0.0);
     // at 5 degrees the ridge is a crease that hex edges follow
     const Features sharp(field, 5);
     CHECK(sharp.smooth_turning() == 0.0);
@@ -94,34 +83,39 @@ TEST_CASE("coverage ceiling in a metric: g = I / h^2 with hexes of 1 is the iden
   const Field scaled(tr, (Eigen::Matrix3d::Identity() / (h * h)).eval());
   const Features fe(euclid, 40), fs(scaled, 40);
   CHECK(fs.smooth_turning() == Approx(fe.smooth_turning() / h).epsilon(1e-12));
-  CHECK(fs.boundary_edge_rms() == Approx(fe.boundary_edge_rms() / h).epsilon(1e-12));
   CHECK(scaled.metric_volume() == Approx(euclid.metric_volume() / (h * h * h)).epsilon(1e-12));
   CHECK(hex_coverage_ceiling(fs, scaled.metric_volume()) ==
         Approx(hex_coverage_ceiling(fe, euclid.metric_volume(), h)).epsilon(1e-12));
-  // A stretch along y keeps the top's faces flat and the ridge convex, with
-  // its angle and its edge (along y) measured in the metric.
+  // A stretch keeps the top's faces flat and the ridge convex. Along y (the
+  // ridge's direction) it lengthens the edge: s times the turning. Along x
+  // (across the ridge) it flattens the slopes, whose metric normals
+  // A^-1 n = (-+0.15 / s, 0, 1) make an angle of 2 atan(0.15 / s).
   const double s = 3;
-  const Field stretched(tr, Eigen::Vector3d(1, s * s, 1).asDiagonal().toDenseMatrix());
-  const Features ft(stretched, 40);
-  CHECK(ft.smooth_turning() == Approx(s * 2 * std::atan(0.15)).epsilon(1e-12));
-  CHECK(stretched.metric_volume() == Approx(s * (2 + 0.15)).epsilon(1e-12));
+  const Field along(tr, Eigen::Vector3d(1, s * s, 1).asDiagonal().toDenseMatrix());
+  CHECK(Features(along, 40).smooth_turning() == Approx(s * 2 * std::atan(0.15)).epsilon(1e-12));
+  CHECK(along.metric_volume() == Approx(s * (2 + 0.15)).epsilon(1e-12));
+  const Field across(tr, Eigen::Vector3d(s * s, 1, 1).asDiagonal().toDenseMatrix());
+  CHECK(Features(across, 40).smooth_turning() == Approx(2 * std::atan(0.15 / s)).epsilon(1e-12));
 }
 
 TEST_CASE("hex edge for a coverage: the inverse of the ceiling", "[coverage_ceiling]") {
-  const double turning = 8 * M_PI, rms = 0.2, volume = 4.1;
-  for (double c : {0.9, 0.99, 0.999}) {
-    const double l = hex_edge_for_coverage(turning, rms, volume, c);
-    CHECK(hex_coverage_ceiling(turning, rms, volume, l) == Approx(c).epsilon(1e-13));
-    CHECK(hex_coverage_ceiling(turning, rms, volume, 1.01 * l) < c);
+  const double turning = 8 * M_PI, volume = 4 * M_PI / 3; // the unit ball
+  // 0.99 on the unit ball: l^2 / 12 * 8 pi / (4 pi / 3) = 0.01, l = sqrt(0.02)
+  CHECK(hex_edge_for_coverage(turning, volume, 0.99) == Approx(std::sqrt(0.02)).epsilon(1e-14));
+  for (double c : {0.0, 0.9, 0.99, 0.999}) {
+    const double l = hex_edge_for_coverage(turning, volume, c);
+    CHECK(hex_coverage_ceiling(turning, volume, l) == Approx(c).margin(1e-14));
+    CHECK(hex_coverage_ceiling(turning, volume, 1.01 * l) < std::max(c, 1e-300));
   }
   // a flat or concave boundary: every size reaches it
-  CHECK(hex_edge_for_coverage(0, rms, volume, 0.99) == std::numeric_limits<double>::infinity());
-  CHECK(hex_edge_for_coverage(-1, rms, volume, 0.99) == std::numeric_limits<double>::infinity());
+  CHECK(hex_edge_for_coverage(0, volume, 0.99) == std::numeric_limits<double>::infinity());
+  CHECK(hex_edge_for_coverage(-1, volume, 0.99) == std::numeric_limits<double>::infinity());
   // what cannot be answered
-  CHECK(std::isnan(hex_edge_for_coverage(turning, rms, volume, 1)));
-  CHECK(std::isnan(hex_edge_for_coverage(turning, rms, 0, 0.99)));
-  CHECK(std::isnan(hex_coverage_ceiling(turning, rms, 0, 1)));
-  CHECK(std::isnan(hex_coverage_ceiling(std::numeric_limits<double>::quiet_NaN(), rms, volume, 1)));
+  CHECK(std::isnan(hex_edge_for_coverage(turning, volume, 1)));
+  CHECK(std::isnan(hex_edge_for_coverage(turning, volume, -0.5)));
+  CHECK(std::isnan(hex_edge_for_coverage(turning, 0, 0.99)));
+  CHECK(std::isnan(hex_coverage_ceiling(turning, 0, 1)));
+  CHECK(std::isnan(hex_coverage_ceiling(std::numeric_limits<double>::quiet_NaN(), volume, 1)));
 }
 
 TEST_CASE("coverage ceiling of the built-in ball: its turning is 8 pi, its ceiling falls with the hex size",
@@ -142,6 +136,6 @@ TEST_CASE("coverage ceiling of the built-in ball: its turning is 8 pi, its ceili
     previous = c;
   }
   // the edge for 0.99 gives 0.99
-  const double l99 = hex_edge_for_coverage(f.smooth_turning(), f.boundary_edge_rms(), field.metric_volume(), 0.99);
+  const double l99 = hex_edge_for_coverage(f.smooth_turning(), field.metric_volume(), 0.99);
   CHECK(hex_coverage_ceiling(f, field.metric_volume(), l99) == Approx(0.99).epsilon(1e-12));
 }

@@ -109,6 +109,9 @@ struct Frame_field_statistics {
   /// Tetrahedra whose hard axes come from a feature: a corner's frame or a
   /// feature edge's tangent.
   std::size_t feature_tets = 0;
+  /// The turning of the boundary's smooth part in the metric
+  /// (`Sharp_features_3::smooth_turning()`), for `hex_coverage_ceiling()`.
+  double boundary_smooth_turning = 0;
   /// Face transports that are exactly the identity (constant metric).
   std::size_t identity_transports = 0;
   /// Largest transport angle over the faces, in radians.

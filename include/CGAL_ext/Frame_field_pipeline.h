@@ -183,18 +183,13 @@ struct Pipeline_frame_field {
   std::size_t non_meshable_edges_straightened = 0;
   /// What hexahedra of the size asked for (edge 1 in the metric) can cover
   /// at best where the boundary is curved (`hex_coverage_ceiling()`, with the
-  /// boundary measured in the metric and the creases of the feature angle).
+  /// boundary measured in the metric and the creases of the feature angle:
+  /// `Frame_field_statistics::boundary_smooth_turning`).
   double coverage_ceiling = 0;
   /// The largest hex edge, in units of the size asked for, whose ceiling
   /// reaches a coverage of 0.99 (`hex_edge_for_coverage()`); +infinity when
   /// every size does (a boundary flat or concave overall).
   double hex_size_factor_for_coverage_99 = 0;
-  /// The boundary's smooth turning in the metric
-  /// (`Sharp_features_3::smooth_turning()`), from which the two above come.
-  double smooth_turning = 0;
-  /// The boundary's root mean square edge in the metric
-  /// (`Sharp_features_3::boundary_edge_rms()`), from which the two above come.
-  double boundary_edge_rms = 0;
   /// The positions of the vertices, by index, that the outputs use: the
   /// straightened ones (NaN at an index no tetrahedron uses), or empty for
   /// the mesh's own (no straightening, none moved, or more non-meshable

@@ -103,8 +103,7 @@ inline nlohmann::ordered_json pipeline_coverage_ceiling_json(const Pipeline_fram
   nlohmann::ordered_json j = {{"coverage", number(frames.coverage_ceiling)}};
   if (frames.hex_size_factor_for_coverage_99 != std::numeric_limits<double>::infinity())
     j["hex_size_factor_for_0_99"] = number(frames.hex_size_factor_for_coverage_99);
-  j["smooth_turning"] = number(frames.smooth_turning);
-  j["boundary_edge_rms"] = number(frames.boundary_edge_rms);
+  j["smooth_turning"] = number(frames.frames->statistics().boundary_smooth_turning);
   return j;
 }
 

@@ -22,51 +22,46 @@ namespace CGAL_ext {
 ///
 /// A bilinear boundary quad of side `l` with its corners on a surface of
 /// mean curvature `H` lies below it by `2H l^2 / 12` on average, whatever its
-/// orientation; the tet mesh's own facets, with corners on the same surface,
-/// lie `2H lt^2 / 16` below it (`lt^2` the mean squared boundary edge). So
-/// the hexes miss `max(0, l^2 / 12 - lt^2 / 16)` times the integral of `2H`
-/// over the boundary's smooth part (creases are followed by hex edges), out
-/// of the volume `V`:
-/// `ceiling = 1 - max(0, l^2 / 12 - lt^2 / 16) * smooth_turning / V`.
+/// orientation. The tet mesh's boundary facets a smooth surface; where the
+/// quad's corners fall anywhere on the facets (as HexEx's do), its cut below
+/// the facets is the same on average. So the hexes miss `l^2 / 12` times the
+/// integral of `2H` over the boundary's smooth part (creases are followed by
+/// hex edges), out of the volume `V`:
+/// `ceiling = max(0, 1 - l^2 / 12 * smooth_turning / V)`.
 /// Concave parts (negative turning), where the quads bulge out, can give a
-/// ceiling above 1. A second-order estimate: on unit balls meshed as radially
-/// mapped grids it lies 0.001 to 0.004 above the coverage that such hexes
-/// reach (`scripts/test_hex_mesh_quality.py`, whose script computes the same
-/// from a hex mesh).
+/// ceiling above 1. A second-order estimate: on unit balls with 5 to 7
+/// hexes per side it lies 0.0025 to 0.0046 above the coverage such hexes
+/// reach, and 0.005 below when every quad corner is a tet vertex
+/// (`scripts/test_hex_mesh_quality.py`, whose script computes the same from
+/// a hex mesh and its tet mesh).
 ///
 /// All lengths in one unit: in the metric, where a hex edge is 1 and `V` the
 /// metric volume, for the pipeline's fields.
 /// \param smooth_turning the integral of `2H` over the smooth part of the boundary
 ///        (`Sharp_features_3::smooth_turning()`)
-/// \param boundary_edge_rms `lt`, the root mean square boundary edge of the tet mesh
-///        (`Sharp_features_3::boundary_edge_rms()`)
 /// \param volume `V`, the domain's volume
 /// \param hex_edge `l`, the hexahedra's edge length
 /// \returns the ceiling; NaN if `volume` is not positive or a value is not finite
-inline double hex_coverage_ceiling(double smooth_turning, double boundary_edge_rms, double volume, double hex_edge) {
-  if (!(volume > 0) || !std::isfinite(smooth_turning) || !std::isfinite(boundary_edge_rms) ||
-      !std::isfinite(volume) || !std::isfinite(hex_edge))
+inline double hex_coverage_ceiling(double smooth_turning, double volume, double hex_edge) {
+  if (!(volume > 0) || !std::isfinite(smooth_turning) || !std::isfinite(volume) || !std::isfinite(hex_edge))
     return std::numeric_limits<double>::quiet_NaN();
-  const double cut = std::max(0.0, hex_edge * hex_edge / 12 - boundary_edge_rms * boundary_edge_rms / 16);
-  return 1 - cut * smooth_turning / volume;
+  return std::max(0.0, 1 - hex_edge * hex_edge / 12 * smooth_turning / volume);
 }
 
 /// \ingroup PkgCGALExtFrames
 /// The largest hex edge whose `hex_coverage_ceiling()` reaches a coverage:
-/// the inverse of that formula in `l`.
+/// the inverse of that formula in `l`, `sqrt(12 (1 - coverage) V / smooth_turning)`.
 /// \param smooth_turning the integral of `2H` over the smooth part of the boundary
-/// \param boundary_edge_rms the root mean square boundary edge of the tet mesh
 /// \param volume the domain's volume
-/// \param coverage the coverage asked for, below 1
+/// \param coverage the coverage asked for, in `[0, 1)`
 /// \returns the hex edge; +infinity if the ceiling reaches `coverage` at every
 ///          size (a boundary that is flat or concave overall); NaN if
-///          `volume` is not positive, `coverage` not below 1, or a value not finite
-inline double hex_edge_for_coverage(double smooth_turning, double boundary_edge_rms, double volume, double coverage) {
-  if (!(volume > 0) || !(coverage < 1) || !std::isfinite(smooth_turning) || !std::isfinite(boundary_edge_rms) ||
-      !std::isfinite(volume) || !std::isfinite(coverage))
+///          `volume` is not positive, `coverage` not in `[0, 1)`, or a value not finite
+inline double hex_edge_for_coverage(double smooth_turning, double volume, double coverage) {
+  if (!(volume > 0) || !(coverage >= 0 && coverage < 1) || !std::isfinite(smooth_turning) || !std::isfinite(volume))
     return std::numeric_limits<double>::quiet_NaN();
   if (!(smooth_turning > 0)) return std::numeric_limits<double>::infinity();
-  return std::sqrt(12 * ((1 - coverage) * volume / smooth_turning + boundary_edge_rms * boundary_edge_rms / 16));
+  return std::sqrt(12 * (1 - coverage) * volume / smooth_turning);
 }
 
 /// \ingroup PkgCGALExtFrames
@@ -80,7 +75,7 @@ inline double hex_edge_for_coverage(double smooth_turning, double boundary_edge_
 template <class Metric_field>
 double hex_coverage_ceiling(const Sharp_features_3<Metric_field>& features, double metric_volume,
                             double hex_edge = 1) {
-  return hex_coverage_ceiling(features.smooth_turning(), features.boundary_edge_rms(), metric_volume, hex_edge);
+  return hex_coverage_ceiling(features.smooth_turning(), metric_volume, hex_edge);
 }
 
 } // namespace CGAL_ext

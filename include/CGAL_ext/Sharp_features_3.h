@@ -215,10 +215,6 @@ public:
   /// uses it.
   /// \returns the sum, in units of metric length
   double smooth_turning() const { return smooth_turning_; }
-  /// The root mean square length in the metric of the boundary edges (all
-  /// edges of the boundary facets, each once).
-  /// \returns the length, in units of metric length (0 without boundary facets)
-  double boundary_edge_rms() const { return boundary_edge_rms_; }
 
 private:
   // The boundary facets of the domain, in the order of their sorted vertex triples.
@@ -246,8 +242,6 @@ private:
   // The boundary edges with their facets; the feature edges among them.
   void find_feature_edges(const Metric_field& field, double cos_angle) {
     std::vector<std::tuple<std::size_t, std::size_t, std::size_t>> edge_facet; // (a, b, facet)
-    double squared_lengths = 0;
-    std::size_t boundary_edges = 0;
     for (std::size_t i = 0; i < facets_.size(); ++i)
       for (int k = 0; k < 3; ++k)
         for (int m = k + 1; m < 3; ++m) edge_facet.emplace_back(facets_[i].v[k], facets_[i].v[m], i);
@@ -262,10 +256,6 @@ private:
       bool feature = e.facets != 2;
       // A is linear along the edge: its value at the midpoint is the mean.
       const Eigen::Matrix3d A = 0.5 * (field.sqrt_metric(vertices_[a]) + field.sqrt_metric(vertices_[b]));
-      const Eigen::Vector3d pa = internal::to_eigen_vector(vertices_[a]->point());
-      const double length = (A * (internal::to_eigen_vector(vertices_[b]->point()) - pa)).norm();
-      squared_lengths += length * length;
-      ++boundary_edges;
       if (!feature) {
         const Facet& f0 = facets_[std::get<2>(edge_facet[first])];
         const Facet& f1 = facets_[std::get<2>(edge_facet[first + 1])];
@@ -279,14 +269,15 @@ private:
         // Convex where f1 bends away from f0's outward normal (a linear map
         // with det > 0 keeps convexity, so the Euclidean test serves).
         const std::size_t w = f1.v[0] != a && f1.v[0] != b ? f1.v[0] : f1.v[1] != a && f1.v[1] != b ? f1.v[1] : f1.v[2];
+        const Eigen::Vector3d pa = internal::to_eigen_vector(vertices_[a]->point());
         const double sign = f0.normal.dot(internal::to_eigen_vector(vertices_[w]->point()) - pa) > 0 ? -1 : 1;
+        const double length = (A * (internal::to_eigen_vector(vertices_[b]->point()) - pa)).norm();
         e.turning = sign * length * std::atan2(d0.cross(d1).norm(), d0.dot(d1)); // exact 0 where flat
         if (!feature) smooth_turning_ += e.turning;
       }
       if (feature) edges_.push_back(e);
       first = last;
     }
-    boundary_edge_rms_ = boundary_edges ? std::sqrt(squared_lengths / double(boundary_edges)) : 0;
   }
 
   // Feature curves of fewer than 3 edges that meet no other feature (a
@@ -412,7 +403,7 @@ private:
   std::vector<Feature_vertex_kind> kind_;
   std::vector<Eigen::Matrix3d> axes_; // tangent in column 0 (curve) or the corner's axes
   std::size_t curve_vertices_ = 0, corners_ = 0, dropped_ = 0;
-  double smooth_turning_ = 0, boundary_edge_rms_ = 0;
+  double smooth_turning_ = 0;
 };
 
 } // namespace CGAL_ext

@@ -229,12 +229,9 @@ Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric
   r.frames = std::make_unique<Pipeline_frame_field_3>(*metric.field);
   Pipeline_frame_field_3& ff = *r.frames;
   ff.compute(options); // it reports its own stages
-  const Sharp_features_3<Pipeline_metric_field_3> boundary(*metric.field, options.feature_angle_deg);
-  r.smooth_turning = boundary.smooth_turning();
-  r.boundary_edge_rms = boundary.boundary_edge_rms();
-  r.coverage_ceiling = hex_coverage_ceiling(boundary, metric.expected_hexes);
-  r.hex_size_factor_for_coverage_99 =
-      hex_edge_for_coverage(r.smooth_turning, r.boundary_edge_rms, metric.expected_hexes, 0.99);
+  const double turning = ff.statistics().boundary_smooth_turning; // hexes of edge 1 in the metric
+  r.coverage_ceiling = hex_coverage_ceiling(turning, metric.expected_hexes, 1);
+  r.hex_size_factor_for_coverage_99 = hex_edge_for_coverage(turning, metric.expected_hexes, 0.99);
   Stage_clock clock(stage);
   if (repair) {
     r.repair = repair_singularities(ff, *repair);

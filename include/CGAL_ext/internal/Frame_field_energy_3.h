@@ -352,6 +352,7 @@ private:
     stats.feature_edges = features.feature_edges().size();
     stats.feature_curve_vertices = features.number_of_curve_vertices();
     stats.feature_corners = features.number_of_corners();
+    stats.boundary_smooth_turning = features.smooth_turning();
     stats.feature_tets = 0;
     const double cos_feature = std::cos(opt.feature_angle_deg * M_PI / 180);
     if (!(opt.crease_split_deg >= 0))

@@ -125,6 +125,9 @@ inline void oct_rotate(const Oct_multiples_of<T>& alpha, const Oct_multiples_of<
   oct_rotate_z(alpha, x);
 }
 
+// A rotation exactly about z (beta exactly 0), given beta's cosine and sine.
+inline bool oct_is_about_z(double cos_beta, double sin_beta) { return sin_beta == 0 && cos_beta == 1; }
+
 // The z-y-z Euler angles R = Rz(alpha) Ry(beta) Rz(gamma) of a quaternion,
 // as cosines and sines, without trigonometric calls and well conditioned
 // everywhere (gimbal lock included): with q = (w, x, y, z),
@@ -135,8 +138,6 @@ inline void oct_rotate(const Oct_multiples_of<T>& alpha, const Oct_multiples_of<
 // Oct_euler_angles keeps the cosines and sines of alpha, beta, gamma alone
 // (48 bytes), for a rotation applied many times (a face's transport);
 // Oct_euler adds their multiples.
-// A rotation exactly about z (beta exactly 0), given beta's cosine and sine.
-inline bool oct_is_about_z(double cos_beta, double sin_beta) { return sin_beta == 0 && cos_beta == 1; }
 struct Oct_euler_angles {
   double c[3], s[3];
   bool about_z() const { return oct_is_about_z(c[1], s[1]); }
