@@ -22,9 +22,9 @@ namespace CGAL_ext {
 ///
 /// A bilinear boundary quad of side `l` with its corners on a surface of
 /// mean curvature `H` lies below it by `2H l^2 / 12` on average, whatever its
-/// orientation. The tet mesh's boundary facets a smooth surface; where the
-/// quad's corners fall anywhere on the facets (as HexEx's do), its cut below
-/// the facets is the same on average. So the hexes miss `l^2 / 12` times the
+/// orientation. The tet mesh's boundary is a faceted copy of such a
+/// surface; where the quad's corners fall anywhere on the facets (as
+/// HexEx's do), it cuts below the facets by the same on average. So the hexes miss `l^2 / 12` times the
 /// integral of `2H` over the boundary's smooth part (creases are followed by
 /// hex edges), out of the volume `V`:
 /// `ceiling = max(0, 1 - l^2 / 12 * smooth_turning / V)`.

@@ -201,8 +201,9 @@ std::string pipeline_summary_text(const Pipeline_tet_mesh& mesh, const Pipeline_
                 "  %-32s %.3g\n  %-32s %zu edges, %zu corners (%.3g degrees), %zu tetrahedra follow them\n"
                 "  %-32s %zu%s%s%s\n  %-32s %zu (%zu closed), nodes %zu (junctions %zu, boundary ends %zu, interior "
                 "ends %zu)\n  %-32s %zu\n",
-                "smoothness energy", st.smoothness_energy, st.smoothness_energy / st.total_face_weight, "face angle (deg)", angles.mean_deg,
-                angles.median_deg, "boundary alignment error (deg)", st.boundary_error_mean_deg,
+                "smoothness energy", st.smoothness_energy, st.smoothness_energy / st.total_face_weight,
+                "face angle (deg)", angles.mean_deg, angles.median_deg, "boundary alignment error (deg)",
+                st.boundary_error_mean_deg,
                 st.boundary_error_max_deg, "max |F^T g F - I|", st.max_orthonormality_error, "sharp features",
                 st.feature_edges, st.feature_corners, context.options.feature_angle_deg, st.feature_tets,
                 "singular edges", frames.singular_edges.size(), types.empty() ? "" : " (", types.c_str(),
