@@ -254,9 +254,9 @@ private:
       const std::size_t a = std::get<0>(edge_facet[first]), b = std::get<1>(edge_facet[first]);
       Feature_edge e{a, b, 180, int(last - first)};
       bool feature = e.facets != 2;
-      // A is linear along the edge: its value at the midpoint is the mean.
-      const Eigen::Matrix3d A = 0.5 * (field.sqrt_metric(vertices_[a]) + field.sqrt_metric(vertices_[b]));
       if (!feature) {
+        // A is linear along the edge: its value at the midpoint is the mean.
+        const Eigen::Matrix3d A = 0.5 * (field.sqrt_metric(vertices_[a]) + field.sqrt_metric(vertices_[b]));
         const Facet& f0 = facets_[std::get<2>(edge_facet[first])];
         const Facet& f1 = facets_[std::get<2>(edge_facet[first + 1])];
         e.normals = {f0.normal, f1.normal};
