@@ -421,6 +421,25 @@ TEST_CASE("generate meshes a built-in shape with Mesh_3", "[cli][generate]") {
   for (double c : sing.cell_data.at("curve").values) CHECK(c >= 1);
   CHECK(sing.point_data.at("node").values.size() == sing.number_of_points);
   CHECK(sing.point_data.at("vertex_index").values.size() == sing.number_of_points);
+  // Nodes: each judged in report.json and singularities.vtu alike.
+  double bad_nodes = 0, vtu_bad_nodes = 0;
+  for (const auto& n : report.at(nlohmann::json::json_pointer("/singularities/node_list"))) bad_nodes += !n.at("meshable").get<bool>();
+  const auto& node_kind = sing.point_data.at("node").values;
+  const auto& vertex_meshable = sing.point_data.at("vertex_meshable").values;
+  REQUIRE(vertex_meshable.size() == sing.number_of_points);
+  double vtu_touches = 0;
+  for (std::size_t p = 0; p < node_kind.size(); ++p)
+    (node_kind[p] > 0 ? vtu_bad_nodes : vtu_touches) += vertex_meshable[p] == 0;
+  const double touches = number(report, "/singularities/surface_touches");
+  CHECK(bad_nodes == number(report, "/singularities/non_meshable_nodes"));
+  CHECK(vtu_bad_nodes == bad_nodes);
+  CHECK(vtu_touches == touches);
+  CHECK(number(report, "/straightening/non_meshable_nodes_after") == bad_nodes);
+  CHECK(number(report, "/repair/non_meshable_nodes_after") == number(report, "/straightening/non_meshable_nodes_before"));
+  CHECK(r.err.find("non-meshable nodes") != std::string::npos);
+  CHECK(r.err.find("curves touching the surface") != std::string::npos);
+  CHECK(report.at(nlohmann::json::json_pointer("/singularities/surface_touch_list")).size() ==
+        number(report, "/singularities/surface_touches"));
   // .perm: vector k of tet1 continues as sign(p_k) times vector |p_k| of tet2
   // (identity metric: no transport; neighbouring frames differ little).
   const CGAL_ext::IO::Perm_file perm = CGAL_ext::IO::read_perm((out / "frames.perm").string());

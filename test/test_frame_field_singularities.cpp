@@ -521,6 +521,82 @@ TEST_CASE("singularity graph: closed loops, curves from a junction back to it, b
   }
   CHECK(through_junction == 2);
   CHECK(total == edges.size());
+  // J, inside, has 5 valence-5 edges: an odd count no hexahedral-mesh
+  // vertex has. The boundary end is not judged.
+  CHECK(g.non_meshable_nodes == 1);
+  CHECK(g.nodes[0].meshable);
+  CHECK_FALSE(g.nodes[1].meshable);
+  CHECK(g.surface_touches.empty());
+  using internal::Vertex_place;
+  auto place = [&](std::size_t v) { // the box's faces taken as smooth
+    const std::size_t i = v % 5, j = v / 5 % 5, k = v / 25;
+    return i == 0 || i == 4 || j == 0 || j == 4 || k == 0 || k == 2 ? Vertex_place::smooth_boundary
+                                                                     : Vertex_place::interior;
+  };
+  CHECK(internal::non_meshable_nodes(edges, place) == std::vector<std::size_t>{J});
+  const auto defects = internal::repair_defects(edges, place);
+  CHECK(defects == std::vector<std::array<std::size_t, 2>>{{J, J}});
+  // With a non-meshable edge at J, the edge is the defect, not J.
+  std::vector<Singular_edge> across = edges;
+  for (Singular_edge& e : across)
+    if (e.vertices == std::array<std::size_t, 2>{std::min(J, id(2, 2, 0)), std::max(J, id(2, 2, 0))})
+      e.type = Singularity_type::quarter_across;
+  CHECK(internal::repair_defects(across, place) ==
+        std::vector<std::array<std::size_t, 2>>{{std::min(J, id(2, 2, 0)), std::max(J, id(2, 2, 0))}});
+  CHECK(singularity_graph(*s->ff, across).non_meshable_nodes == 0);
+  // A curve along the bottom face through B = (1, 1, 0): two singular
+  // edges at a smooth boundary vertex, which the graph counts as a touch,
+  // not a node; on a feature it is not judged. Its ends, one edge each,
+  // pass.
+  const std::size_t B = id(1, 1, 0);
+  std::vector<Singular_edge> touching = edges;
+  touching.push_back(edge(id(2, 1, 0), B));
+  touching.push_back(edge(B, id(1, 2, 0)));
+  std::sort(touching.begin(), touching.end(),
+            [](const Singular_edge& a, const Singular_edge& b) { return a.vertices < b.vertices; });
+  CHECK(internal::non_meshable_nodes(touching, place) == std::vector<std::size_t>{J});
+  // The field's own features: the box's edges and corners; B is off them.
+  CHECK(s->ff->feature_vertex_kind(id(0, 0, 0)) == Feature_vertex_kind::corner);
+  CHECK(s->ff->feature_vertex_kind(id(2, 0, 0)) == Feature_vertex_kind::curve);
+  CHECK(s->ff->feature_vertex_kind(B) == Feature_vertex_kind::none);
+  const Singularity_graph t = singularity_graph(*s->ff, touching);
+  CHECK(t.surface_touches == std::vector<std::size_t>{B});
+  CHECK(t.non_meshable_nodes == 1);
+  // A third edge at B makes it a junction on the surface: a non-meshable node.
+  touching.push_back(edge(B, id(3, 3, 0)));
+  std::sort(touching.begin(), touching.end(),
+            [](const Singular_edge& a, const Singular_edge& b) { return a.vertices < b.vertices; });
+  CHECK(internal::non_meshable_nodes(touching, place) == std::vector<std::size_t>{B, J});
+  CHECK(internal::non_meshable_nodes(touching, [&](std::size_t v) {
+          return v == B ? Vertex_place::feature : place(v);
+        }) == std::vector<std::size_t>{J});
+  const Singularity_graph u = singularity_graph(*s->ff, touching);
+  CHECK(u.surface_touches.empty());
+  CHECK(u.non_meshable_nodes == 2);
+}
+
+TEST_CASE("hexahedral-mesh vertices: the counts of valence-3 and valence-5 edges their links allow", "[singularities]") {
+  // (valence-3 edges, valence-5 edges) that a vertex of a hexahedral mesh can have ...
+  // links: the octahedron (a regular vertex), the triangular and pentagonal
+  // bipyramids (a curve through it), the tetrahedron (the corner of the
+  // ball's inner cube), degrees (3, 3, 4, 4, 5, 5), the snub disphenoid and
+  // the icosahedron.
+  const std::vector<std::pair<std::size_t, std::size_t>> pass = {{0, 0}, {2, 0}, {0, 2}, {4, 0},
+                                                                  {2, 2}, {0, 4}, {0, 12}};
+  for (const auto& [a, b] : pass) {
+    INFO(a << " valence-3 and " << b << " valence-5 edges");
+    CHECK(is_meshable_interior_node(a, b));
+  }
+  // ... and those it cannot: an odd count (three curves meeting; a curve
+  // ending), more than 12 (five valence-3 edges), and the links of 5 and 6
+  // edges that no triangulated sphere has: degrees (3, 3, 3, 5, 4),
+  // (3, 5, 4, 4, 4, 4) and (3, 3, 3, 5, 5, 5).
+  const std::vector<std::pair<std::size_t, std::size_t>> fail = {
+      {1, 0}, {0, 1}, {3, 0}, {2, 1}, {1, 2}, {0, 3}, {5, 0}, {4, 2}, {0, 14}, {3, 1}, {1, 1}, {3, 3}};
+  for (const auto& [a, b] : fail) {
+    INFO(a << " valence-3 and " << b << " valence-5 edges");
+    CHECK_FALSE(is_meshable_interior_node(a, b));
+  }
 }
 
 TEST_CASE("matchings compare frames after the transport from the first tetrahedron to the second", "[singularities][perm]") {
@@ -743,6 +819,7 @@ TEST_CASE("singular curves partition the singular edges and end at nodes", "[sin
   CHECK(std::all_of(seen.begin(), seen.end(), [](int n) { return n == 1; }));
   CHECK(g.boundary_ends + g.interior_ends + g.junctions == g.nodes.size());
   CHECK(g.interior_ends == 0); // a smooth field's singular curves do not stop inside
+  CHECK(g.non_meshable_nodes == 0);
 }
 
 namespace {

@@ -195,6 +195,15 @@ public:
     update_statistics();
   }
 
+  /// Where a vertex lies on the sharp features found by the set-up
+  /// (`Sharp_features_3` with `Frame_field_options::feature_angle_deg`).
+  /// \param v a vertex index
+  /// \returns its kind; `none` off the features, inside the volume, or
+  ///          before `prepare()`
+  Feature_vertex_kind feature_vertex_kind(std::size_t v) const {
+    return v < e_.feature_kind.size() ? e_.feature_kind[v] : Feature_vertex_kind::none;
+  }
+
   /// The statistics of the last `compute()`.
   /// \returns the statistics (their energy and alignment figures refreshed by
   ///          `update_statistics()`)

@@ -213,7 +213,7 @@ struct Singularity_repair_options {
   /// The largest angle of a restart's turns, in degrees.
   double restart_angle_deg = 90;
   /// If set, called after each round with its number (from 1), the radius,
-  /// the regions tried and accepted, and the non-meshable edges left.
+  /// the regions tried and accepted, and the non-meshable edges and nodes left.
   std::function<void(int round, int radius, std::size_t tried, std::size_t accepted, std::size_t left)> progress;
 };
 

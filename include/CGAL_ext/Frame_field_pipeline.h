@@ -181,6 +181,12 @@ struct Pipeline_frame_field {
   /// The non-meshable singular edges with the moved positions, whether they
   /// were kept or not.
   std::size_t non_meshable_edges_straightened = 0;
+  /** @{ */
+  /// The non-meshable nodes (`Singular_node::meshable`) with the mesh's own
+  /// positions and with the moved ones (`graph` has those of the positions
+  /// written).
+  std::size_t non_meshable_nodes_unstraightened = 0, non_meshable_nodes_straightened = 0;
+  /** @} */
   /// What hexahedra of the size asked for (edge 1 in the metric) can cover
   /// at best where the boundary is curved (`hex_coverage_ceiling()`, with the
   /// boundary measured in the metric and the creases of the feature angle:

@@ -30,7 +30,7 @@ inline nlohmann::ordered_json pipeline_singularities_json(const Pipeline_frame_f
   nlohmann::ordered_json by_type = nlohmann::ordered_json::object();
   for (const auto& [name, n] : count_singular_edges_by_type(f.singular_edges)) by_type[name] = n;
   nlohmann::ordered_json edges = nlohmann::ordered_json::array(), curves = nlohmann::ordered_json::array(),
-                         nodes = nlohmann::ordered_json::array();
+                         nodes = nlohmann::ordered_json::array(), touches = nlohmann::ordered_json::array();
   for (const Singular_edge& s : f.singular_edges)
     if (!is_meshable(s.type))
       edges.push_back({{"vertices", {s.vertices[0] + 1, s.vertices[1] + 1}},
@@ -51,7 +51,10 @@ inline nlohmann::ordered_json pipeline_singularities_json(const Pipeline_frame_f
     nodes.push_back({{"vertex", n.vertex + 1},
                      {"position", point_json(n.position)},
                      {"degree", n.degree},
-                     {"kind", singular_node_kind_name(n.kind)}});
+                     {"kind", singular_node_kind_name(n.kind)},
+                     {"meshable", n.meshable}});
+  for (std::size_t k = 0; k < graph.surface_touches.size(); ++k)
+    touches.push_back({{"vertex", graph.surface_touches[k] + 1}, {"position", point_json(graph.surface_touch_positions[k])}});
   return {{"edges", f.singular_edges.size()},
           {"edges_by_type", by_type},
           {"non_meshable_edges", f.non_meshable_edges},
@@ -61,9 +64,12 @@ inline nlohmann::ordered_json pipeline_singularities_json(const Pipeline_frame_f
           {"junctions", graph.junctions},
           {"boundary_ends", graph.boundary_ends},
           {"interior_ends", graph.interior_ends},
+          {"non_meshable_nodes", graph.non_meshable_nodes},
+          {"surface_touches", graph.surface_touches.size()},
           {"non_meshable_edge_list", edges},
           {"curve_list", curves},
-          {"node_list", nodes}};
+          {"node_list", nodes},
+          {"surface_touch_list", touches}};
 }
 
 // The "repair" object, or null if the repair was not run.
@@ -71,6 +77,8 @@ inline nlohmann::ordered_json pipeline_repair_json(const std::optional<Singulari
   if (!fix) return nullptr;
   return {{"non_meshable_before", fix->non_meshable_before},
           {"non_meshable_after", fix->non_meshable_after},
+          {"non_meshable_nodes_before", fix->non_meshable_nodes_before},
+          {"non_meshable_nodes_after", fix->non_meshable_nodes_after},
           {"rounds", fix->rounds},
           {"batches", fix->batches},
           {"regions_tried", fix->regions_tried},
@@ -93,7 +101,10 @@ inline nlohmann::ordered_json pipeline_straightening_json(const Pipeline_frame_f
           {"kept", !frames.positions.empty()},
           {"non_meshable_before", frames.non_meshable_edges_unstraightened},
           {"non_meshable_with_moved", frames.non_meshable_edges_straightened},
-          {"non_meshable_after", frames.non_meshable_edges}};
+          {"non_meshable_after", frames.non_meshable_edges},
+          {"non_meshable_nodes_before", frames.non_meshable_nodes_unstraightened},
+          {"non_meshable_nodes_with_moved", frames.non_meshable_nodes_straightened},
+          {"non_meshable_nodes_after", frames.graph.non_meshable_nodes}};
 }
 
 // The "hex_coverage_ceiling" object: numbers, null where not finite; the

@@ -4,8 +4,8 @@
 #define CGAL_EXT_FRAME_FIELD_REPAIR_3_H
 
 /// \file Frame_field_repair_3.h
-/// Removal of the non-meshable singular edges of a frame field by local
-/// re-optimisation around them.
+/// Removal of the non-meshable singular edges and nodes of a frame field by
+/// local re-optimisation around them.
 
 #include <CGAL_ext/Frame_field_matchings_3.h>
 #include <CGAL_ext/Frame_field_singularities_3.h>
@@ -25,6 +25,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace CGAL_ext {
@@ -37,8 +38,12 @@ struct Singularity_repair_report {
   std::size_t non_meshable_before = 0, non_meshable_after = 0;
   /** @} */
   /** @{ */
+  /// Non-meshable nodes (`Singular_node::meshable`) before and after.
+  std::size_t non_meshable_nodes_before = 0, non_meshable_nodes_after = 0;
+  /** @} */
+  /** @{ */
   /// Rounds run, batches of regions re-optimised together, regions
-  /// re-optimised, and regions kept (fewer non-meshable edges than before).
+  /// re-optimised, and regions kept (fewer defects than before).
   std::size_t rounds = 0, batches = 0, regions_tried = 0, regions_accepted = 0;
   /** @} */
   /// Regions kept whose frames came from a restart (`Singularity_repair_options::restarts`).
@@ -61,6 +66,26 @@ inline std::vector<std::array<std::size_t, 2>> non_meshable_edges(const std::vec
   for (const Singular_edge& e : edges)
     if (!is_meshable(e.type)) out.push_back(e.vertices);
   return out;
+}
+
+// The repair's defects: the non-meshable edges, then the vertices of
+// non_meshable_nodes() as edges {v, v} (which the regions, clusters and
+// counts below take as they take edges).
+template <class Place>
+std::vector<std::array<std::size_t, 2>> repair_defects(const std::vector<Singular_edge>& edges, Place place) {
+  std::vector<std::array<std::size_t, 2>> out = non_meshable_edges(edges);
+  for (std::size_t v : non_meshable_nodes(edges, place)) out.push_back({v, v});
+  return out;
+}
+
+// A defect's weight: an edge outweighs any number of nodes a region can
+// hold, so that a region never trades nodes for an edge.
+inline std::size_t defect_weight(const std::array<std::size_t, 2>& d) { return d[0] == d[1] ? 1 : 1 << 16; }
+
+inline std::size_t defect_weight(const std::vector<std::array<std::size_t, 2>>& defects) {
+  std::size_t w = 0;
+  for (const auto& d : defects) w += defect_weight(d);
+  return w;
 }
 
 // The clusters of some edges: the vertex lists (sorted) of the sets of edges
@@ -90,7 +115,7 @@ inline std::vector<std::vector<std::size_t>> edge_clusters(const std::vector<std
 }
 
 // The state of `repair_singularities()`: the tetrahedra around each vertex,
-// the matchings kept up to date, the non-meshable edges, and scratch marks.
+// the matchings kept up to date, the defects, and scratch marks.
 template <class Frame_field>
 class Singularity_repairer {
 public:
@@ -105,10 +130,15 @@ public:
       for (int k = 0; k < 4; ++k) vertices = std::max(vertices, vertex(i, k) + 1);
     tets_around_vertices(ff, vertices, first_, star_);
     reached_.assign(vertices, 0);
-    bad_ = non_meshable_edges(singular_edges(ff, matchings_));
+    place_ = vertex_places(ff);
+    bad_ = defects(singular_edges(ff, matchings_));
   }
 
+  // The defects left: non-meshable edges, and nodes as {v, v}.
   const Edges& non_meshable() const { return bad_; }
+  Edges defects(const std::vector<Singular_edge>& edges) const {
+    return repair_defects(edges, [&](std::size_t v) { return place_[v]; });
+  }
   // The matchings of the current frames (updated after every change).
   const Frame_field_matchings_3<Frame_field>& matchings() const { return matchings_; }
 
@@ -250,17 +280,20 @@ private:
       std::vector<internal::Singular_edge_holonomy> all(outside.size() + own.size());
       std::merge(outside.begin(), outside.end(), own.begin(), own.end(), all.begin(),
                  [](const auto& a, const auto& b) { return a.edge.vertices < b.edge.vertices; });
+      // A node's singular edges all lie in `examined` (it reaches
+      // singular_curve_direction_span >= 1 rings past `inner`).
       Edges out;
-      for (const auto& e : non_meshable_edges(type_singular_edges(all)))
+      for (const auto& e : defects(type_singular_edges(all)))
         if (is_inner(e)) out.push_back(e);
       return out;
     };
-    auto count = [&](const Edges& edges) { // per region
+    auto count = [&](const Edges& edges) { // weighted, per region
       std::vector<std::size_t> c(m, 0);
       for (const auto& e : edges)
         for (std::size_t r = 0; r < m; ++r)
-          c[r] += tet_around(e, [&](std::size_t t) { return std::binary_search(near[r].begin(), near[r].end(), t); }) <
-                  ff_.size();
+          if (tet_around(e, [&](std::size_t t) { return std::binary_search(near[r].begin(), near[r].end(), t); }) <
+              ff_.size())
+            c[r] += defect_weight(e);
       return c;
     };
     // The energy that a region's frames change: that of its tetrahedra and
@@ -342,7 +375,7 @@ private:
         ff_.set_rotation(tets[k], best[r].frames.empty() ? saved[k] : best[r].frames[j]);
     matchings_.update(ff_, tets);
     const Edges here = examine();
-    if (here.size() >= old_here.size()) { // a curve's typing reaches past a region: undo
+    if (defect_weight(here) >= defect_weight(old_here)) { // a curve's typing reaches past a region: undo
       for (std::size_t k = 0; k < tets.size(); ++k) ff_.set_rotation(tets[k], saved[k]);
       matchings_.update(ff_, tets);
       for (std::size_t i : inner) inner_[i] = 0;
@@ -376,6 +409,7 @@ private:
   Frame_field_matchings_3<Frame_field> matchings_;
   std::vector<std::size_t> first_, star_; // the tetrahedra around each vertex (compressed rows)
   std::vector<char> in_, reached_, inner_;
+  std::vector<Vertex_place> place_;
   Edges bad_;
 };
 
@@ -436,8 +470,14 @@ Singularity_repair_report repair_singularities(Frame_field& ff, const Singularit
   Singularity_repair_report report;
   report.energy_before = report.energy_after = ff.smoothness_energy();
   internal::Singularity_repairer<Frame_field> repairer(ff, options, report);
-  report.non_meshable_before = report.non_meshable_after = repairer.non_meshable().size();
-  if (report.non_meshable_before == 0) return report;
+  auto count = [&](const std::vector<std::array<std::size_t, 2>>& defects, std::size_t& edges, std::size_t& nodes) {
+    nodes = std::size_t(std::count_if(defects.begin(), defects.end(), [](const auto& d) { return d[0] == d[1]; }));
+    edges = defects.size() - nodes;
+  };
+  count(repairer.non_meshable(), report.non_meshable_before, report.non_meshable_nodes_before);
+  report.non_meshable_after = report.non_meshable_before;
+  report.non_meshable_nodes_after = report.non_meshable_nodes_before;
+  if (repairer.non_meshable().empty()) return report;
   std::vector<Eigen::Quaterniond> original(ff.size()); // to undo everything if the final check fails
   for (std::size_t i = 0; i < ff.size(); ++i) original[i] = ff.rotation_quaternion(i);
   auto round = [&](int radius, int restarts) {
@@ -458,11 +498,15 @@ Singularity_repair_report repair_singularities(Frame_field& ff, const Singularit
     const std::size_t kept = round(options.further_radii[std::size_t(k) % turn], options.further_restarts);
     idle = kept > 0 ? 0 : idle + 1;
   }
-  // The final count from all edges: the field is never left worse.
-  report.non_meshable_after = internal::non_meshable_edges(singular_edges(ff, repairer.matchings())).size();
-  if (report.non_meshable_after > report.non_meshable_before) {
+  // The final count from all edges: the field is never left worse (more
+  // non-meshable edges, or as many and more nodes).
+  count(repairer.defects(singular_edges(ff, repairer.matchings())), report.non_meshable_after,
+        report.non_meshable_nodes_after);
+  if (std::make_pair(report.non_meshable_after, report.non_meshable_nodes_after) >
+      std::make_pair(report.non_meshable_before, report.non_meshable_nodes_before)) {
     for (std::size_t i = 0; i < ff.size(); ++i) ff.set_rotation(i, original[i]);
     report.non_meshable_after = report.non_meshable_before;
+    report.non_meshable_nodes_after = report.non_meshable_nodes_before;
     report.regions_accepted = report.regions_from_restarts = report.tets_changed = 0;
   }
   ff.update_statistics();

@@ -11,6 +11,7 @@
 #include <CGAL_ext/Frame_field_matchings_3.h>
 #include <CGAL_ext/Metric_field_3.h>
 #include <CGAL_ext/Octahedral_frame.h>
+#include <CGAL_ext/Sharp_features_3.h>
 
 #include <Eigen/Core>
 
@@ -62,6 +63,61 @@ inline const char* singularity_type_name(Singularity_type t) {
 inline bool is_meshable(Singularity_type t) {
   return t == Singularity_type::plus_quarter || t == Singularity_type::minus_quarter;
 }
+
+/// \ingroup PkgCGALExtFrames
+/// Whether an interior vertex where `plus_quarter` edges (valence 3) and
+/// `minus_quarter` edges (valence 5) meet, all its other edges regular, can
+/// be a vertex of a hexahedral mesh, by the count of its edges.
+///
+/// The hexahedra around a vertex of a hexahedral mesh form a triangulated
+/// sphere, its link: one triangle per hexahedron, one vertex per edge, of
+/// degree the edge's valence. Euler's formula makes the sum of 6 minus the
+/// degrees 12: 3 per valence-3 edge, 1 per valence-5 edge, 2 per regular
+/// edge. So `3 plus + minus` must be even (an even number of singular
+/// edges) and at most 12, which fixes the number of regular edges and the
+/// link's size `n`. The only triangulated spheres with 4, 5 and 6 vertices
+/// are the tetrahedron (degrees 3, 3, 3, 3), the triangular bipyramid
+/// (3, 3, 4, 4, 4), the octahedron (4 six times) and (3, 3, 4, 4, 5, 5):
+/// for `n` up to 6 only these counts pass (for instance a junction of three
+/// valence-3 curves and one valence-5 curve fails). Beyond that the test is
+/// necessary, not sufficient.
+///
+/// An integer-grid map puts every node of the singular curves on a grid
+/// vertex, which becomes a vertex of the hexahedral mesh; around a node that
+/// fails, the map degenerates.
+/// \param plus_quarter the number of `plus_quarter` edges at the vertex
+/// \param minus_quarter the number of `minus_quarter` edges at the vertex
+/// \returns whether a hexahedral-mesh vertex can have these edges
+inline bool is_meshable_interior_node(std::size_t plus_quarter, std::size_t minus_quarter) {
+  const std::size_t sum = 3 * plus_quarter + minus_quarter;
+  if (sum % 2 != 0 || sum > 12) return false;
+  const std::size_t n = plus_quarter + minus_quarter + (12 - sum) / 2; // the link's vertices
+  if (n == 5) return plus_quarter == 2;                                // the bipyramid
+  if (n == 6) return plus_quarter == minus_quarter && plus_quarter % 2 == 0; // octahedron, (3, 3, 4, 4, 5, 5)
+  return true; // n = 4: the tetrahedron (4 plus, 0 minus); n > 6: not checked
+}
+
+/// \ingroup PkgCGALExtFrames
+/// Whether a boundary vertex off the sharp features, where `singular_edges`
+/// singular edges (`plus_quarter` or `minus_quarter`) meet, can be a vertex
+/// of a hexahedral mesh whose boundary is smooth there.
+///
+/// The hexahedra around a boundary vertex form a triangulated disc: a vertex
+/// per edge, of degree the edge's valence inside, its number of hexahedra
+/// plus one on the rim. Euler's formula makes the sum of `6 - degree` inside
+/// and `4 - degree` on the rim 6. Where the boundary is smooth every rim
+/// edge has two hexahedra and gives 1, so `3 plus + minus + 2 regular + m =
+/// 6` with `m >= 3` rim edges; of what is left, a single valence-3 edge
+/// (3 rim edges) or valence-5 edge (5 rim edges) fits, and two or three
+/// valence-5 edges (`m` = 4 or 3, no regular edge) would need more triangles
+/// between the inner vertices than a simple triangulation has. So at most
+/// one singular curve meets a smooth boundary at a vertex: a curve that
+/// touches the surface and goes back in, or runs along it, makes the map
+/// fold the surface into a crease there (the built-in torus: its cross
+/// sections become squares), and a junction on the surface cannot be meshed.
+/// \param singular_edges the number of singular edges at the vertex
+/// \returns whether it is at most 1
+inline bool is_meshable_smooth_boundary_node(std::size_t singular_edges) { return singular_edges <= 1; }
 
 /// \ingroup PkgCGALExtFrames
 /// A singular interior edge.
@@ -411,6 +467,51 @@ std::vector<Singular_edge> singular_edges(const Frame_field& ff) {
   return singular_edges(ff, Frame_field_matchings_3<Frame_field>(ff));
 }
 
+namespace internal {
+
+// Where a vertex lies, for the judgement of the singular edges meeting there.
+enum class Vertex_place { interior, smooth_boundary, feature };
+
+// The nodes (vertices with other than two singular edges) whose singular
+// edges are all meshable and cannot meet there in a hexahedral mesh,
+// sorted: inside, failing is_meshable_interior_node(); on the boundary off
+// the features, three or more. A vertex with a non-meshable edge is left to
+// that edge. `place(v)` tells where vertex v lies.
+template <class Place>
+std::vector<std::size_t> non_meshable_nodes(const std::vector<Singular_edge>& edges, Place place) {
+  std::map<std::size_t, std::array<std::size_t, 3>> count; // +1/4, -1/4, others
+  for (const Singular_edge& e : edges)
+    for (std::size_t v : e.vertices)
+      ++count[v][e.type == Singularity_type::plus_quarter ? 0 : e.type == Singularity_type::minus_quarter ? 1 : 2];
+  std::vector<std::size_t> out;
+  for (const auto& [v, c] : count) {
+    if (c[2] > 0 || c[0] + c[1] == 2) continue;
+    const Vertex_place where = place(v);
+    if (where == Vertex_place::interior ? !is_meshable_interior_node(c[0], c[1])
+                                        : where == Vertex_place::smooth_boundary && !is_meshable_smooth_boundary_node(c[0] + c[1]))
+      out.push_back(v);
+  }
+  return out;
+}
+
+// Where each vertex of a frame field lies (boundary: a vertex of a boundary face).
+template <class Frame_field>
+std::vector<Vertex_place> vertex_places(const Frame_field& ff) {
+  std::size_t nv = 0;
+  for (std::size_t i = 0; i < ff.size(); ++i)
+    for (int k = 0; k < 4; ++k) nv = std::max(nv, ff.vertex_index(ff.cell(i)->vertex(k)) + 1);
+  std::vector<Vertex_place> place(nv, Vertex_place::interior);
+  for (const auto& b : ff.boundary_faces())
+    for (int k = 1; k < 4; ++k) {
+      const std::size_t v = ff.vertex_index(ff.cell(b.tet)->vertex((b.facet + k) % 4));
+      place[v] = ff.feature_vertex_kind(v) == Feature_vertex_kind::none ? Vertex_place::smooth_boundary
+                                                                        : Vertex_place::feature;
+    }
+  return place;
+}
+
+} // namespace internal
+
 /// \ingroup PkgCGALExtFrames
 /// A vertex where singular edges meet in other than a simple chain: a vertex
 /// with 1 or with 3 or more incident singular edges.
@@ -434,6 +535,13 @@ struct Singular_node {
   bool on_boundary;
   /// The kind.
   Kind kind;
+  /// False where the node's singular edges are all meshable and no
+  /// hexahedral mesh has them at such a vertex: inside, by
+  /// `is_meshable_interior_node()`; on the boundary off the sharp features,
+  /// by `is_meshable_smooth_boundary_node()` (a junction there). True
+  /// otherwise (nodes on the features are not judged; a node with a
+  /// non-meshable edge is counted by that edge).
+  bool meshable = true;
 };
 
 /// \ingroup PkgCGALExtFrames
@@ -487,12 +595,23 @@ struct Singularity_graph {
   /// Counts: curves that are closed loops, nodes of each kind.
   std::size_t closed_curves = 0, boundary_ends = 0, interior_ends = 0, junctions = 0;
   /** @} */
+  /** @{ */
+  /// Nodes that are not `meshable`.
+  std::size_t non_meshable_nodes = 0;
+  /// The vertices on the boundary off the sharp features where a curve
+  /// touches the surface: two singular edges, both meshable (not nodes; see
+  /// `is_meshable_smooth_boundary_node()`), in increasing order.
+  std::vector<std::size_t> surface_touches;
+  /// Their positions.
+  std::vector<Eigen::Vector3d> surface_touch_positions;
+  /** @} */
 };
 
 /// \ingroup PkgCGALExtFrames
 /// Groups singular edges into curves and nodes.
 ///
-/// Nodes are the vertices with 1, or 3 or more, incident singular edges.
+/// Nodes are the vertices with 1, or 3 or more, incident singular edges;
+/// interior ones are judged by `is_meshable_interior_node()`.
 /// Curves run from node to node through vertices with exactly two singular
 /// edges; what remains are closed loops. Deterministic: curves start at the
 /// nodes in increasing vertex order and leave each along its edges in
@@ -512,15 +631,9 @@ Singularity_graph singularity_graph(const Frame_field& ff, const std::vector<Sin
   std::vector<std::array<std::size_t, 2>> ends(edges.size());
   for (std::size_t k = 0; k < edges.size(); ++k) ends[k] = edges[k].vertices;
   const auto incident = internal::edges_at_vertices(ends);
-  // Positions and boundary flags of the vertices that singular edges touch.
+  // Positions and places of the vertices that singular edges touch.
   std::map<std::size_t, Eigen::Vector3d> position;
-  std::map<std::size_t, bool> boundary;
-  for (const auto& b : ff.boundary_faces())
-    for (int k = 1; k < 4; ++k) {
-      const Vertex_handle v = ff.cell(b.tet)->vertex((b.facet + k) % 4);
-      const std::size_t i = ff.vertex_index(v);
-      if (incident.count(i)) boundary[i] = true;
-    }
+  const std::vector<internal::Vertex_place> place = internal::vertex_places(ff);
   for (std::size_t i = 0; i < ff.size(); ++i)
     for (int k = 0; k < 4; ++k) {
       const Vertex_handle v = ff.cell(i)->vertex(k);
@@ -529,6 +642,7 @@ Singularity_graph singularity_graph(const Frame_field& ff, const std::vector<Sin
         position[j] = positions ? (*positions)[j] : internal::to_eigen_vector(v->point());
     }
   auto other = [&](std::size_t k, std::size_t v) { return edges[k].vertices[0] == v ? edges[k].vertices[1] : edges[k].vertices[0]; };
+  const std::vector<std::size_t> bad_nodes = internal::non_meshable_nodes(edges, [&](std::size_t v) { return place[v]; });
 
   Singularity_graph g;
   std::vector<char> used(edges.size(), 0);
@@ -561,10 +675,12 @@ Singularity_graph singularity_graph(const Frame_field& ff, const std::vector<Sin
     node.vertex = v;
     node.position = position[v];
     node.degree = int(list.size());
-    node.on_boundary = boundary.count(v) > 0;
+    node.on_boundary = place[v] != internal::Vertex_place::interior;
     node.kind = list.size() >= 3 ? Singular_node::Kind::junction
                 : node.on_boundary ? Singular_node::Kind::boundary_end
                                    : Singular_node::Kind::interior_end;
+    node.meshable = !std::binary_search(bad_nodes.begin(), bad_nodes.end(), v);
+    g.non_meshable_nodes += !node.meshable;
     g.nodes.push_back(node);
     if (node.kind == Singular_node::Kind::junction) ++g.junctions;
     else if (node.kind == Singular_node::Kind::boundary_end) ++g.boundary_ends;
@@ -572,6 +688,12 @@ Singularity_graph singularity_graph(const Frame_field& ff, const std::vector<Sin
     for (std::size_t k : list)
       if (!used[k]) g.curves.push_back(trace(v, k));
   }
+  for (const auto& [v, list] : incident)
+    if (list.size() == 2 && place[v] == internal::Vertex_place::smooth_boundary &&
+        is_meshable(edges[list[0]].type) && is_meshable(edges[list[1]].type)) {
+      g.surface_touches.push_back(v);
+      g.surface_touch_positions.push_back(position[v]);
+    }
   for (const auto& [v, list] : incident)
     for (std::size_t k : list)
       if (!used[k]) {

@@ -182,6 +182,9 @@ public:
   /// \param v a vertex index
   /// \returns the kind; `none` for an index beyond the vertices
   Feature_vertex_kind kind(std::size_t v) const { return v < kind_.size() ? kind_[v] : Feature_vertex_kind::none; }
+  /// The kinds of all vertices.
+  /// \returns the kind of each vertex, by vertex index
+  const std::vector<Feature_vertex_kind>& kinds() const { return kind_; }
   /// The unit tangent (Euclidean) of the feature curve at a `curve` vertex.
   /// \param v a vertex index of kind `curve`
   /// \returns the unit tangent, in either orientation

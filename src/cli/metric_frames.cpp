@@ -308,7 +308,7 @@ CLI::App* add_generate(CLI::App& app, Generate_request& r) {
                            "ANGLE"))
       ->capture_default_str();
   CLI::Option* no_repair = sub.add_flag("--no-repair", r.no_repair,
-               "keep the non-meshable singular edges the optimiser leaves (default: re-optimise the regions around "
+               "keep the non-meshable singular edges and nodes the optimiser leaves (default: re-optimise the regions around "
                "them)");
   sub.add_option("--repair-restarts", r.repair_restarts,
                  "random restarts per region in the repair's second round (radius 3), after its two deterministic "

@@ -237,7 +237,8 @@ Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric
     r.repair = repair_singularities(ff, *repair);
     const Singularity_repair_report& fix = *r.repair;
     clock("repair", std::to_string(fix.non_meshable_before) + " -> " + std::to_string(fix.non_meshable_after) +
-                        " non-meshable edges; " + std::to_string(fix.regions_accepted) + " of " +
+                        " non-meshable edges, " + std::to_string(fix.non_meshable_nodes_before) + " -> " +
+                        std::to_string(fix.non_meshable_nodes_after) + " nodes; " + std::to_string(fix.regions_accepted) + " of " +
                         std::to_string(fix.regions_tried) + " regions kept (" +
                         std::to_string(fix.regions_from_restarts) + " from restarts), energy " +
                         format_number(fix.energy_before, 10) + " -> " + format_number(fix.energy_after, 10));
@@ -250,22 +251,30 @@ Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric
   };
   r.non_meshable_edges = r.non_meshable_edges_unstraightened = non_meshable(r.singular_edges);
   r.graph = singularity_graph(ff, r.singular_edges);
+  r.non_meshable_nodes_unstraightened = r.non_meshable_nodes_straightened = r.graph.non_meshable_nodes;
   clock("singularities", std::to_string(r.singular_edges.size()) + " singular edges in " +
                              std::to_string(r.graph.curves.size()) + " curves, " + std::to_string(r.graph.nodes.size()) +
-                             " nodes; " + std::to_string(r.non_meshable_edges) + " non-meshable edges");
+                             " nodes; " + std::to_string(r.non_meshable_edges) + " non-meshable edges, " +
+                             std::to_string(r.graph.non_meshable_nodes) + " non-meshable nodes, " +
+                             std::to_string(r.graph.surface_touches.size()) + " surface touches");
   if (straightening) {
     Singular_curve_straightening_report report;
     std::vector<Eigen::Vector3d> moved =
         straighten_singular_curves(ff, *r.matchings, r.singular_edges, *straightening, &report);
     std::vector<Singular_edge> edges = singular_edges(ff, *r.matchings, nullptr, &moved);
     const std::size_t bad = non_meshable(edges);
-    const bool keep = report.moved_vertices > 0 && bad <= r.non_meshable_edges;
+    Singularity_graph graph = singularity_graph(ff, edges, &moved);
+    const std::size_t bad_nodes_before = r.graph.non_meshable_nodes, bad_nodes = graph.non_meshable_nodes;
+    r.non_meshable_nodes_straightened = bad_nodes;
+    // Kept unless the moves leave more non-meshable edges, or as many and more nodes.
+    const bool keep = report.moved_vertices > 0 &&
+                      std::make_pair(bad, bad_nodes) <= std::make_pair(r.non_meshable_edges, bad_nodes_before);
     r.non_meshable_edges_straightened = bad;
     if (keep) {
       r.positions = std::move(moved);
       r.singular_edges = std::move(edges);
       r.non_meshable_edges = bad;
-      r.graph = singularity_graph(ff, r.singular_edges, &r.positions);
+      r.graph = std::move(graph);
     }
     r.straightening = report;
     char moves[200];
@@ -273,11 +282,12 @@ Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric
                   "%zu of %zu curve vertices moved (at most %.3g of their edges' length; %zu put back); ",
                   report.moved_vertices, report.curve_vertices, report.max_relative_displacement,
                   report.reverted_vertices);
-    const std::string before = std::to_string(r.non_meshable_edges_unstraightened), after = std::to_string(bad);
+    const std::string before = std::to_string(r.non_meshable_edges_unstraightened) + " non-meshable edges and " +
+                               std::to_string(bad_nodes_before) + " nodes",
+                      after = std::to_string(bad) + " and " + std::to_string(bad_nodes);
     const std::string detail = moves + (report.moved_vertices == 0 ? "nothing changed"
-                                        : keep ? before + " -> " + after + " non-meshable edges"
-                                               : after + " non-meshable edges instead of " + before +
-                                                     ": the mesh's positions kept");
+                                        : keep ? before + " -> " + after
+                                               : after + " instead of " + before + ": the mesh's positions kept");
     clock("straightening", detail);
   }
   return r;

@@ -112,14 +112,17 @@ void write_singularities_vtu(const std::string& path, const IO::Medit_mesh& mesh
   for (std::size_t c = 0; c < graph.curves.size(); ++c)
     for (std::size_t e : graph.curves[c].edges) curve.values[e] = double(c + 1);
   IO::Vtu_array vertex_id{"vertex_index", 1, std::vector<double>(points.size()), true},
-      node{"node", 1, std::vector<double>(points.size(), 0), true};
+      node{"node", 1, std::vector<double>(points.size(), 0), true},
+      vertex_meshable{"vertex_meshable", 1, std::vector<double>(points.size(), 1), true};
   for (const auto& [global, l] : local) vertex_id.values[l] = double(global + 1);
   for (const Singular_node& n : graph.nodes)
     node.values[local.at(n.vertex)] = n.kind == Singular_node::Kind::boundary_end   ? 1
                                       : n.kind == Singular_node::Kind::interior_end ? 2
                                                                                     : 3;
+  for (const Singular_node& n : graph.nodes) vertex_meshable.values[local.at(n.vertex)] = n.meshable ? 1 : 0;
+  for (std::size_t v : graph.surface_touches) vertex_meshable.values[local.at(v)] = 0;
   IO::write_vtu_segments(path, points, lines, {type, index, valence, meshable, turn, axis_angle, edge_axis_angle, axis, curve},
-                         {vertex_id, node});
+                         {vertex_id, node, vertex_meshable});
 }
 
 } // namespace
@@ -220,6 +223,26 @@ std::string pipeline_summary_text(const Pipeline_tet_mesh& mesh, const Pipeline_
     ++listed;
   }
   if (frames.non_meshable_edges > listed) text += "    ... (all in report.json)\n";
+  std::snprintf(buf, sizeof buf, "  %-32s %zu\n", "non-meshable nodes", graph.non_meshable_nodes);
+  text += buf;
+  listed = 0;
+  for (const Singular_node& n : graph.nodes) {
+    if (n.meshable || listed == 5) continue;
+    std::snprintf(buf, sizeof buf, "    %s of %d singular edges %s at vertex %zu (%.6g, %.6g, %.6g)\n",
+                  singular_node_kind_name(n.kind), n.degree, n.on_boundary ? "on the surface" : "inside", n.vertex + 1,
+                  n.position(0), n.position(1), n.position(2));
+    text += buf;
+    ++listed;
+  }
+  if (graph.non_meshable_nodes > listed) text += "    ... (all in report.json)\n";
+  std::snprintf(buf, sizeof buf, "  %-32s %zu\n", "curves touching the surface", graph.surface_touches.size());
+  text += buf;
+  for (std::size_t k = 0; k < graph.surface_touches.size() && k < 5; ++k) {
+    const Eigen::Vector3d& p = graph.surface_touch_positions[k];
+    std::snprintf(buf, sizeof buf, "    at vertex %zu (%.6g, %.6g, %.6g)\n", graph.surface_touches[k] + 1, p(0), p(1), p(2));
+    text += buf;
+  }
+  if (graph.surface_touches.size() > 5) text += "    ... (all in report.json)\n";
   return text;
 }
 

@@ -275,6 +275,7 @@ public:
   std::vector<Frame_field_boundary_face> boundary; ///< the boundary faces, in tetrahedron order
   std::vector<Constraint> constraints;            ///< the boundary tetrahedra's terms
   std::vector<std::int64_t> constraint_of;        ///< per tetrahedron, its constraint or -1
+  std::vector<Feature_vertex_kind> feature_kind;  ///< per vertex, its place on the sharp features
   int weight_exponent = 0;                        ///< the face weights are in units of 2^weight_exponent
   double total_weight = 0;                        ///< the sum of the interior face weights, in that unit
 
@@ -353,6 +354,7 @@ private:
     stats.feature_curve_vertices = features.number_of_curve_vertices();
     stats.feature_corners = features.number_of_corners();
     stats.boundary_smooth_turning = features.smooth_turning();
+    feature_kind = features.kinds();
     stats.feature_tets = 0;
     const double cos_feature = std::cos(opt.feature_angle_deg * M_PI / 180);
     if (!(opt.crease_split_deg >= 0))
