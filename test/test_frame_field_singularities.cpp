@@ -1056,6 +1056,19 @@ TEST_CASE("the repair's further rounds attack what the first rounds leave, and s
   for (std::size_t i = 0; i < ff.size(); ++i) CHECK(ff.rotation_quaternion(i).coeffs() == repaired[i].coeffs());
 }
 
+TEST_CASE("the repair's defects: nodes as edges from a vertex to itself, clustered with the edges they touch",
+          "[singularities][repair]") {
+  using Edges = std::vector<std::array<std::size_t, 2>>;
+  // Edges 1-2 and 2-3, a node at 5 that edge 3-5 reaches, a lone node at 7.
+  const Edges defects = {{1, 2}, {5, 5}, {2, 3}, {7, 7}, {3, 5}};
+  const std::vector<std::vector<std::size_t>> clusters = internal::edge_clusters(defects);
+  CHECK(clusters == std::vector<std::vector<std::size_t>>{{1, 2, 3, 5}, {7}});
+  // An edge outweighs any number of nodes a region can hold.
+  CHECK(internal::defect_weight(Edges{{1, 2}}) > internal::defect_weight(Edges(1000, {5, 5})));
+  CHECK(internal::defect_weight(Edges{{1, 2}, {5, 5}}) > internal::defect_weight(Edges{{1, 2}}));
+  CHECK(internal::defect_weight(Edges{}) == 0);
+}
+
 TEST_CASE("the repair refuses options it cannot use", "[singularities][repair]") {
   const auto s = computed_ball_field();
   auto refuses = [&](auto change) {
