@@ -125,7 +125,7 @@ struct Hex_run {
 
 struct Quality {
   std::size_t tets = 0, singular = 0, plus = 0, minus = 0, non_meshable = 0, curves = 0, nodes = 0,
-              interior_ends = 0;
+              interior_ends = 0, non_meshable_nodes = 0, surface_touches = 0;
   double angle_mean = 0, angle_median = 0, energy_per_weight = 0, align_mean = 0, align_max = 0;
   // The features found at the default angle (whether the field used them or not).
   std::size_t feature_edges = 0, corners = 0;
@@ -239,7 +239,8 @@ Hex_run hex_pipeline(const Hex_tools& tools, const CGAL_ext::IO::Medit_mesh& mes
 // The measures of a computed field; `seconds`: the time it took (the time
 // of the matchings and singular curves is added). With `straighten`, those
 // of generate's output: the curves straightened (their moved vertices kept
-// unless they give more non-meshable edges, as generate does).
+// unless they give more non-meshable edges, or as many and more
+// non-meshable nodes, as generate does).
 Quality measure(const Tr& tr, const Field& field, const Frames& ff, double seconds, const Hex_tools& tools,
                 const CGAL_ext::IO::Medit_mesh& mesh, double h, bool straighten = false) {
   Quality q;
@@ -249,13 +250,14 @@ Quality measure(const Tr& tr, const Field& field, const Frames& ff, double secon
   auto edges = CGAL_ext::singular_edges(ff, matchings);
   std::vector<Eigen::Vector3d> positions;
   if (straighten) {
-    auto count = [](const std::vector<CGAL_ext::Singular_edge>& e) {
-      return std::count_if(e.begin(), e.end(), [](const auto& s) { return !CGAL_ext::is_meshable(s.type); });
+    auto count = [&](const std::vector<CGAL_ext::Singular_edge>& e, const std::vector<Eigen::Vector3d>* p) {
+      return std::make_pair(std::count_if(e.begin(), e.end(), [](const auto& s) { return !CGAL_ext::is_meshable(s.type); }),
+                            CGAL_ext::singularity_graph(ff, e, p).non_meshable_nodes);
     };
     CGAL_ext::Singular_curve_straightening_report report;
     positions = CGAL_ext::straighten_singular_curves(ff, matchings, edges, {}, &report);
     auto moved = CGAL_ext::singular_edges(ff, matchings, nullptr, &positions);
-    if (report.moved_vertices > 0 && count(moved) <= count(edges)) edges.swap(moved);
+    if (report.moved_vertices > 0 && count(moved, &positions) <= count(edges, nullptr)) edges.swap(moved);
     else positions.clear();
   }
   const std::vector<Eigen::Vector3d>* moved = positions.empty() ? nullptr : &positions;
@@ -272,6 +274,8 @@ Quality measure(const Tr& tr, const Field& field, const Frames& ff, double secon
   q.curves = graph.curves.size();
   q.nodes = graph.nodes.size();
   q.interior_ends = graph.interior_ends;
+  q.non_meshable_nodes = graph.non_meshable_nodes;
+  q.surface_touches = graph.surface_touches.size();
   const CGAL_ext::Face_angle_statistics angles = matchings.face_angle_statistics(ff);
   q.angle_mean = angles.mean_deg;
   q.angle_median = angles.median_deg;
@@ -318,10 +322,10 @@ Quality measure(const Tr& tr, const Field& field, const Frames& ff, double secon
 }
 
 void print_row(const std::string& name, const char* variant, const Quality& q, double seconds_mesh) {
-  std::printf("%-22s %-12s %8zu %6zu %5zu %5zu %5zu %6zu %5zu %6zu %8.3f %8.3f %8.4f %7.3f %7.2f %6zu %6zu %7.2f %7.2f "
-              "%5zu %5zu %7.1f %7.1f\n",
+  std::printf("%-22s %-12s %8zu %6zu %5zu %5zu %5zu %6zu %5zu %6zu %5zu %5zu %8.3f %8.3f %8.4f %7.3f %7.2f %6zu %6zu "
+              "%7.2f %7.2f %5zu %5zu %7.1f %7.1f\n",
               name.c_str(), variant, q.tets, q.singular, q.plus, q.minus, q.non_meshable, q.curves, q.nodes,
-              q.interior_ends, q.angle_mean, q.angle_median, q.energy_per_weight, q.align_mean, q.align_max,
+              q.interior_ends, q.non_meshable_nodes, q.surface_touches, q.angle_mean, q.angle_median, q.energy_per_weight, q.align_mean, q.align_max,
               q.feature_edges, q.corners, q.tangent_error_mean, q.tangent_error_max, q.singular_at_features,
               q.singular_along_features, seconds_mesh, q.seconds_field);
   if (q.hex_runs.size() == 1) {
@@ -445,12 +449,13 @@ int main(int argc, char** argv) {
         inputs.push_back(std::string(dir) + "/" + model + ".off");
   }
   std::printf("Frame-field quality with generate's default options (identity metric, Frame_field_options()), %d threads,\n"
-              "before and after the repair of non-meshable edges (no repair, repaired), after it with the singular\n"
-              "curves straightened (straightened: generate's output, typed and meshed with the moved vertices), and\n"
-              "with features off and no repair (no features), on the same mesh.\n"
+              "before and after the repair of non-meshable edges and nodes (no repair, repaired), after it with the\n"
+              "singular curves straightened (straightened: generate's output, typed and meshed with the moved vertices),\n"
+              "and with features off and no repair (no features), on the same mesh.\n"
               "Singular edges: all, +1/4, -1/4, non-meshable (neither quarter turn about the edge); curves, nodes, curves\n"
-              "ending inside the volume; face angle between matched neighbouring frames (deg); energy per unit face\n"
-              "weight; boundary alignment error (deg); feature edges and corners (at the default angle); angle between\n"
+              "ending inside the volume, non-meshable nodes (nm.nd), vertices where a curve touches the smooth surface\n"
+              "(touch); face angle between matched neighbouring frames (deg); energy per unit face weight; boundary\n"
+              "alignment error (deg); feature edges and corners (at the default angle); angle between\n"
               "a feature edge and the nearest frame axis (deg, mean and max over tetrahedra at feature edges); singular\n"
               "edges at a feature vertex (f.sing) and, of them, along the surface (f.surf); seconds for the mesh (Mesh_3\n"
               "or reading) and for the field (frames, repair, matchings, singular curves).\n",
@@ -464,8 +469,9 @@ int main(int argc, char** argv) {
                 tools.integergrid.c_str(), tools.hexex.c_str(), tools.fraction, tools.sizes, tools.size(1, 0),
                 tools.size(1, tools.sizes - 1));
   std::printf("\n");
-  std::printf("%-22s %-12s %8s %6s %5s %5s %5s %6s %5s %6s %8s %8s %8s %7s %7s %6s %6s %7s %7s %5s %5s %7s %7s\n",
-              "model", "variant", "tets", "sing", "+1/4", "-1/4", "nonm", "curves", "nodes", "in-end", "ang.mean",
+  std::printf("%-22s %-12s %8s %6s %5s %5s %5s %6s %5s %6s %5s %5s %8s %8s %8s %7s %7s %6s %6s %7s %7s %5s %5s %7s %7s\n",
+              "model", "variant", "tets", "sing", "+1/4", "-1/4", "nonm", "curves", "nodes", "in-end", "nm.nd", "touch",
+              "ang.mean",
               "ang.med", "E/w", "al.mean", "al.max", "f.edge", "corner", "tan.mean", "tan.max", "f.sing", "f.surf",
               "mesh s", "field s");
   int failures = 0;
