@@ -252,7 +252,7 @@ Quality measure(const Tr& tr, const Field& field, const Frames& ff, double secon
   if (straighten) {
     auto count = [&](const std::vector<CGAL_ext::Singular_edge>& e, const std::vector<Eigen::Vector3d>* p) {
       return std::make_pair(std::count_if(e.begin(), e.end(), [](const auto& s) { return !CGAL_ext::is_meshable(s.type); }),
-                            CGAL_ext::singularity_graph(ff, e, p).non_meshable_nodes);
+                            CGAL_ext::singularity_graph(ff, e, p).non_meshable_vertices());
     };
     CGAL_ext::Singular_curve_straightening_report report;
     positions = CGAL_ext::straighten_singular_curves(ff, matchings, edges, {}, &report);

@@ -522,7 +522,7 @@ TEST_CASE("singularity graph: closed loops, curves from a junction back to it, b
   CHECK(through_junction == 2);
   CHECK(total == edges.size());
   // J, inside, has 5 valence-5 edges: an odd count no hexahedral-mesh
-  // vertex has. The boundary end is not judged.
+  // vertex has. The boundary end, one edge on the smooth bottom face, passes.
   CHECK(g.non_meshable_nodes == 1);
   CHECK(g.nodes[0].meshable);
   CHECK_FALSE(g.nodes[1].meshable);
@@ -573,26 +573,44 @@ TEST_CASE("singularity graph: closed loops, curves from a junction back to it, b
   const Singularity_graph u = singularity_graph(*s->ff, touching);
   CHECK(u.surface_touches.empty());
   CHECK(u.non_meshable_nodes == 2);
+  CHECK(u.curve_turns.empty());
+  // The square loop's edge (3, 3, 1)-(1, 3, 1) turned to +1/4: at both its
+  // ends the loop turns from -1/4 to +1/4, which no hex mesh has.
+  const std::size_t T = id(3, 3, 1), U = id(1, 3, 1);
+  std::vector<Singular_edge> turning = edges;
+  for (Singular_edge& e : turning)
+    if (e.vertices == std::array<std::size_t, 2>{std::min(T, U), std::max(T, U)}) e.type = Singularity_type::plus_quarter;
+  const Singularity_graph x = singularity_graph(*s->ff, turning);
+  CHECK(x.curve_turns == std::vector<std::size_t>{std::min(T, U), std::max(T, U)});
+  CHECK(x.non_meshable_nodes == 1); // J
+  CHECK(x.non_meshable_vertices() == 3);
+  std::vector<std::size_t> expected = {J, T, U};
+  std::sort(expected.begin(), expected.end());
+  CHECK(internal::non_meshable_nodes(turning, place) == expected);
 }
 
 TEST_CASE("hexahedral-mesh vertices: the counts of valence-3 and valence-5 edges their links allow", "[singularities]") {
   // (valence-3 edges, valence-5 edges) that a vertex of a hexahedral mesh can have ...
-  // links: the octahedron (a regular vertex), the triangular and pentagonal
-  // bipyramids (a curve through it), the tetrahedron (the corner of the
-  // ball's inner cube), degrees (3, 3, 4, 4, 5, 5), the snub disphenoid and
-  // the icosahedron.
-  const std::vector<std::pair<std::size_t, std::size_t>> pass = {{0, 0}, {2, 0}, {0, 2}, {4, 0},
-                                                                  {2, 2}, {0, 4}, {0, 12}};
+  // links, the 11 triangulated spheres with degrees 3 to 5: the octahedron
+  // (a regular vertex), the triangular and pentagonal bipyramids (a curve
+  // through it), the tetrahedron (the corner of the ball's inner cube),
+  // degrees (3, 3, 4, 4, 5, 5), (3, 4, 4, 4, 5, 5, 5), the snub disphenoid,
+  // (3, 3, 5 six times), (4, 4, 4, 5 six times), the gyroelongated square
+  // bipyramid and the icosahedron.
+  const std::vector<std::pair<std::size_t, std::size_t>> pass = {{0, 0}, {2, 0}, {0, 2}, {4, 0}, {2, 2}, {1, 3},
+                                                                  {0, 4}, {2, 6}, {0, 6}, {0, 8}, {0, 12}};
   for (const auto& [a, b] : pass) {
     INFO(a << " valence-3 and " << b << " valence-5 edges");
     CHECK(is_meshable_interior_node(a, b));
   }
   // ... and those it cannot: an odd count (three curves meeting; a curve
-  // ending), more than 12 (five valence-3 edges), and the links of 5 and 6
-  // edges that no triangulated sphere has: degrees (3, 3, 3, 5, 4),
-  // (3, 5, 4, 4, 4, 4) and (3, 3, 3, 5, 5, 5).
+  // ending), more than 12 (five valence-3 edges), and even counts of at most
+  // 12 that no triangulated sphere has, such as degrees (3, 3, 3, 5, 4),
+  // (3, 5, 4, 4, 4, 4) (a curve turning from valence 3 to 5), (3, 3, 3, 5,
+  // 5, 5), (3, 3, 4, 5, 5, 5, 5) and (4, 5 ten times).
   const std::vector<std::pair<std::size_t, std::size_t>> fail = {
-      {1, 0}, {0, 1}, {3, 0}, {2, 1}, {1, 2}, {0, 3}, {5, 0}, {4, 2}, {0, 14}, {3, 1}, {1, 1}, {3, 3}};
+      {1, 0}, {0, 1}, {3, 0}, {2, 1}, {1, 2}, {0, 3}, {5, 0}, {4, 2}, {0, 14}, {3, 1},
+      {1, 1}, {3, 3}, {2, 4}, {1, 5}, {1, 7}, {1, 9}, {0, 10}};
   for (const auto& [a, b] : fail) {
     INFO(a << " valence-3 and " << b << " valence-5 edges");
     CHECK_FALSE(is_meshable_interior_node(a, b));
@@ -867,6 +885,7 @@ TEST_CASE("a field built with non-meshable edges is repaired", "[singularities][
   const std::vector<Singular_edge> after = singular_edges(ff);
   CHECK(r.non_meshable_after == count_non_meshable(after));
   CHECK(r.non_meshable_after == 0);
+  CHECK(r.non_meshable_nodes_after == singularity_graph(ff, after).non_meshable_vertices());
   CHECK(after.empty()); // the surrounding identity frames force no singularity at all
   CHECK(r.regions_accepted > 0);
   CHECK(r.energy_before == Approx(energy_before));
@@ -896,10 +915,15 @@ TEST_CASE("the repair does not depend on the thread count", "[singularities][rep
     for (std::size_t i = 0; i < q.size(); ++i) q[i] = s->ff->rotation_quaternion(i);
     results.push_back(q);
     // Never worse than before, and the report says what the field has.
-    const std::size_t now = count_non_meshable(singular_edges(*s->ff));
-    CHECK(now == reports.back().non_meshable_after);
-    CHECK(reports.back().non_meshable_after <= reports.back().non_meshable_before);
-    CHECK((reports.back().regions_accepted > 0) == (now < reports.back().non_meshable_before));
+    const Singularity_repair_report& r = reports.back();
+    const std::vector<Singular_edge> edges = singular_edges(*s->ff);
+    const std::size_t now = count_non_meshable(edges), nodes_now = singularity_graph(*s->ff, edges).non_meshable_vertices();
+    CHECK(now == r.non_meshable_after);
+    CHECK(nodes_now == r.non_meshable_nodes_after);
+    CHECK(std::make_pair(r.non_meshable_after, r.non_meshable_nodes_after) <=
+          std::make_pair(r.non_meshable_before, r.non_meshable_nodes_before));
+    CHECK((r.regions_accepted > 0) == (std::make_pair(now, nodes_now) <
+                                       std::make_pair(r.non_meshable_before, r.non_meshable_nodes_before)));
   }
   CHECK(reports[0].non_meshable_after == reports[1].non_meshable_after);
   CHECK(reports[0].regions_accepted == reports[1].regions_accepted);

@@ -177,14 +177,14 @@ struct Frame_field_boundary_face {
 /// \ingroup PkgCGALExtFrames
 /// Options of `repair_singularities()`.
 struct Singularity_repair_options {
-  /// The radii of the regions re-optimised around the non-meshable edges,
-  /// in rings of tetrahedra sharing a vertex: one round per radius, in
-  /// order, while non-meshable edges remain. A larger region gives the
+  /// The radii of the regions re-optimised around the non-meshable edges
+  /// and nodes, in rings of tetrahedra sharing a vertex: one round per
+  /// radius, in order, while any remain. A larger region gives the
   /// re-optimisation more room and other boundary values.
   std::vector<int> radii = {2, 3, 4};
   /// Restarts per region in each round, in the order of `radii` (none in
   /// the rounds past the end of the list): after the relaxed and the
-  /// propagated starts, for the regions that still have non-meshable edges,
+  /// propagated starts, for the regions that still have defects,
   /// the relaxed start with every frame turned by a pseudo-random rotation
   /// (`Frame_field_3::reoptimize()` with a seed), which leads L-BFGS to
   /// other local minima. The seeds depend on the round, the start and the
@@ -194,7 +194,7 @@ struct Singularity_repair_options {
   /// in the last round, whose regions are the largest, they cost more for
   /// less.
   std::vector<int> restarts = {0, 6, 0};
-  /// After the rounds of `radii`, while non-meshable edges remain: further
+  /// After the rounds of `radii`, while non-meshable edges or nodes remain: further
   /// rounds, at most `max_further_rounds`, whose radii are taken in turn from
   /// `further_radii`, each with `further_restarts` restarts per region (new
   /// seeds every round). They stop early when a whole turn of
@@ -203,7 +203,7 @@ struct Singularity_repair_options {
   /// from there. Measured with `metric-frames generate` (doc/benchmarks.md),
   /// non-meshable edges left by the repair without and with them: CGAL's
   /// anchor 7 and 2, TetGen's anchor 12 and 0, TetGen's fandisk 1 and 0.
-  /// They cost time only where non-meshable edges remain (at 10^6
+  /// They cost time only where defects remain (at 10^6
   /// tetrahedra 43 s, for 19 -> 8). 0 turns them off.
   int max_further_rounds = 8;
   /// The radii of the further rounds, taken in turn.

@@ -182,7 +182,8 @@ struct Pipeline_frame_field {
   /// were kept or not.
   std::size_t non_meshable_edges_straightened = 0;
   /** @{ */
-  /// The non-meshable nodes (`Singular_node::meshable`) with the mesh's own
+  /// The non-meshable nodes and curve turns
+  /// (`Singularity_graph::non_meshable_vertices()`) with the mesh's own
   /// positions and with the moved ones (`graph` has those of the positions
   /// written).
   std::size_t non_meshable_nodes_unstraightened = 0, non_meshable_nodes_straightened = 0;

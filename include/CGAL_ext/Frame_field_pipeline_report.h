@@ -30,7 +30,8 @@ inline nlohmann::ordered_json pipeline_singularities_json(const Pipeline_frame_f
   nlohmann::ordered_json by_type = nlohmann::ordered_json::object();
   for (const auto& [name, n] : count_singular_edges_by_type(f.singular_edges)) by_type[name] = n;
   nlohmann::ordered_json edges = nlohmann::ordered_json::array(), curves = nlohmann::ordered_json::array(),
-                         nodes = nlohmann::ordered_json::array(), touches = nlohmann::ordered_json::array();
+                         nodes = nlohmann::ordered_json::array(), touches = nlohmann::ordered_json::array(),
+                         turns = nlohmann::ordered_json::array();
   for (const Singular_edge& s : f.singular_edges)
     if (!is_meshable(s.type))
       edges.push_back({{"vertices", {s.vertices[0] + 1, s.vertices[1] + 1}},
@@ -55,6 +56,8 @@ inline nlohmann::ordered_json pipeline_singularities_json(const Pipeline_frame_f
                      {"meshable", n.meshable}});
   for (std::size_t k = 0; k < graph.surface_touches.size(); ++k)
     touches.push_back({{"vertex", graph.surface_touches[k] + 1}, {"position", point_json(graph.surface_touch_positions[k])}});
+  for (std::size_t k = 0; k < graph.curve_turns.size(); ++k)
+    turns.push_back({{"vertex", graph.curve_turns[k] + 1}, {"position", point_json(graph.curve_turn_positions[k])}});
   return {{"edges", f.singular_edges.size()},
           {"edges_by_type", by_type},
           {"non_meshable_edges", f.non_meshable_edges},
@@ -65,10 +68,12 @@ inline nlohmann::ordered_json pipeline_singularities_json(const Pipeline_frame_f
           {"boundary_ends", graph.boundary_ends},
           {"interior_ends", graph.interior_ends},
           {"non_meshable_nodes", graph.non_meshable_nodes},
+          {"curve_turns", graph.curve_turns.size()},
           {"surface_touches", graph.surface_touches.size()},
           {"non_meshable_edge_list", edges},
           {"curve_list", curves},
           {"node_list", nodes},
+          {"curve_turn_list", turns},
           {"surface_touch_list", touches}};
 }
 
@@ -104,7 +109,7 @@ inline nlohmann::ordered_json pipeline_straightening_json(const Pipeline_frame_f
           {"non_meshable_after", frames.non_meshable_edges},
           {"non_meshable_nodes_before", frames.non_meshable_nodes_unstraightened},
           {"non_meshable_nodes_with_moved", frames.non_meshable_nodes_straightened},
-          {"non_meshable_nodes_after", frames.graph.non_meshable_nodes}};
+          {"non_meshable_nodes_after", frames.graph.non_meshable_vertices()}};
 }
 
 // The "hex_coverage_ceiling" object: numbers, null where not finite; the

@@ -38,7 +38,8 @@ struct Singularity_repair_report {
   std::size_t non_meshable_before = 0, non_meshable_after = 0;
   /** @} */
   /** @{ */
-  /// Non-meshable nodes (`Singular_node::meshable`) before and after.
+  /// Non-meshable nodes and curve turns before and after
+  /// (`Singularity_graph::non_meshable_vertices()`).
   std::size_t non_meshable_nodes_before = 0, non_meshable_nodes_after = 0;
   /** @} */
   /** @{ */
@@ -263,12 +264,14 @@ private:
       return tet_around(e, [&](std::size_t i) { return inner_[i] != 0; }) < ff_.size();
     };
     // The examination types the edges of `examined` as singular_edges() on
-    // it would. Those of no tetrahedron of the batch keep their holonomy
+    // it would. It reaches one ring beyond the typing of the edges near
+    // `inner`: a node there has edges one ring further out, whose typing
+    // follows their curve `singular_curve_direction_span` edges on. Those of no tetrahedron of the batch keep their holonomy
     // while the batch is re-optimised: found once (`outside`), and only the
     // batch's own edges again after each start.
     std::vector<internal::Singular_edge_holonomy> outside;
     {
-      const std::vector<std::size_t> examined = region(seeds, reach + singular_curve_direction_span);
+      const std::vector<std::size_t> examined = region(seeds, reach + singular_curve_direction_span + 1);
       for (std::size_t i : tets) in_[i] = 1;
       for (auto& h : singular_edge_holonomies(ff_, matchings_, &examined, nullptr))
         if (tet_around(h.edge.vertices, [&](std::size_t i) { return in_[i] != 0; }) == ff_.size())
@@ -280,8 +283,6 @@ private:
       std::vector<internal::Singular_edge_holonomy> all(outside.size() + own.size());
       std::merge(outside.begin(), outside.end(), own.begin(), own.end(), all.begin(),
                  [](const auto& a, const auto& b) { return a.edge.vertices < b.edge.vertices; });
-      // A node's singular edges all lie in `examined` (it reaches
-      // singular_curve_direction_span >= 1 rings past `inner`).
       Edges out;
       for (const auto& e : defects(type_singular_edges(all)))
         if (is_inner(e)) out.push_back(e);
@@ -417,34 +418,38 @@ private:
 
 /// \ingroup PkgCGALExtFrames
 /// Removes non-meshable singular edges (`is_meshable()` false: third and
-/// half turns, quarter turns across their curve) by local re-optimisation.
+/// half turns, quarter turns across their curve) and non-meshable nodes and
+/// curve turns (`Singularity_graph::non_meshable_vertices()`) by local
+/// re-optimisation.
 ///
-/// Each round groups the non-meshable edges into clusters (connected through
-/// shared vertices) and takes around each cluster the tetrahedra within
-/// `radius` vertex rings of its vertices: its region. Regions that share no
-/// vertex form a batch and are re-optimised together with all other frames
-/// fixed (`Frame_field_3::reoptimize()`, hard boundary constraints kept):
-/// from the `relaxed` start, the `propagated` one, and the round's restarts
-/// (`Singularity_repair_options::restarts`: the relaxed start turned by
-/// seeded random rotations), each start for the regions that still have
-/// non-meshable edges. Each region is judged alone, by the non-meshable
-/// edges its frames can retype (those within
-/// `singular_curve_direction_span + 1` rings of it): of all its starts it
-/// keeps the frames with the fewest (the lowest smoothness energy among
-/// equals) if fewer than before, and is restored bit for bit otherwise.
-/// After the rounds of `Singularity_repair_options::radii`, further rounds
+/// The defects are the non-meshable edges and those vertices; an edge
+/// outweighs any number of vertices in every count, so that a region never
+/// trades vertices for an edge. Each round groups the defects into clusters
+/// (connected through shared vertices) and takes around each cluster the
+/// tetrahedra within `radius` vertex rings of its vertices: its region.
+/// Regions that share no vertex form a batch and are re-optimised together
+/// with all other frames fixed (`Frame_field_3::reoptimize()`, hard boundary
+/// constraints kept): from the `relaxed` start, the `propagated` one, and
+/// the round's restarts (`Singularity_repair_options::restarts`: the relaxed
+/// start turned by seeded random rotations), each start for the regions
+/// that still have defects. Each region is judged alone, by the defects its
+/// frames can retype (those within `singular_curve_direction_span + 1`
+/// rings of it): of all its starts it keeps the frames with the fewest (the
+/// lowest smoothness energy among equals) if fewer than before, and is
+/// restored bit for bit otherwise. After the rounds of
+/// `Singularity_repair_options::radii`, further rounds
 /// (`max_further_rounds`, `further_radii`, `further_restarts`) go on from
-/// the frames the previous ones left while non-meshable edges remain, until
-/// a whole turn of their radii keeps nothing.
+/// the frames the previous ones left while defects remain, until a whole
+/// turn of their radii keeps nothing.
 /// Only the edges within `singular_curve_direction_span + 1`
 /// rings of the regions can change type; they are typed from the edges
-/// within `singular_curve_direction_span` more rings (the matchings are
+/// within `singular_curve_direction_span + 1` more rings (the matchings are
 /// updated, not recomputed), so a batch costs time in proportion to its
 /// regions; if their count did not drop, the batch is undone. A final count
 /// over all edges checks the result: the field is never left with more
-/// non-meshable edges than before. Deterministic: regions, their order, the
-/// restarts' rotations and the optimisation do not depend on the thread
-/// count.
+/// non-meshable edges than before, nor with as many and more non-meshable
+/// vertices. Deterministic: regions, their order, the restarts' rotations
+/// and the optimisation do not depend on the thread count.
 ///
 /// \tparam Frame_field a `Frame_field_3`
 /// \param ff the frame field, after `compute()`; its frames are changed in

@@ -66,21 +66,25 @@ inline bool is_meshable(Singularity_type t) {
 
 /// \ingroup PkgCGALExtFrames
 /// Whether an interior vertex where `plus_quarter` edges (valence 3) and
-/// `minus_quarter` edges (valence 5) meet, all its other edges regular, can
-/// be a vertex of a hexahedral mesh, by the count of its edges.
+/// `minus_quarter` edges (valence 5) meet, all its other edges regular
+/// (valence 4), can be a vertex of a hexahedral mesh.
 ///
 /// The hexahedra around a vertex of a hexahedral mesh form a triangulated
 /// sphere, its link: one triangle per hexahedron, one vertex per edge, of
-/// degree the edge's valence. Euler's formula makes the sum of 6 minus the
-/// degrees 12: 3 per valence-3 edge, 1 per valence-5 edge, 2 per regular
-/// edge. So `3 plus + minus` must be even (an even number of singular
-/// edges) and at most 12, which fixes the number of regular edges and the
-/// link's size `n`. The only triangulated spheres with 4, 5 and 6 vertices
-/// are the tetrahedron (degrees 3, 3, 3, 3), the triangular bipyramid
-/// (3, 3, 4, 4, 4), the octahedron (4 six times) and (3, 3, 4, 4, 5, 5):
-/// for `n` up to 6 only these counts pass (for instance a junction of three
-/// valence-3 curves and one valence-5 curve fails). Beyond that the test is
-/// necessary, not sufficient.
+/// degree the edge's valence (simplicial where the hexahedra do not
+/// overlap). Euler's formula makes the sum of 6 minus the degrees 12: 3 per
+/// valence-3 edge, 1 per valence-5 edge, 2 per regular edge. So
+/// `3 plus + minus` is even (an even number of singular edges) and at most
+/// 12, and with degrees 3 to 5 the link has at most 12 vertices. The
+/// triangulated spheres with such degrees are 11 (found by enumerating the
+/// simplicial spheres of up to 12 vertices), with `(plus, minus)` =
+/// (0, 0) (the octahedron: a regular vertex), (2, 0) and (0, 2) (a curve
+/// through it: the triangular and pentagonal bipyramids), (4, 0) (the
+/// tetrahedron: the corner of the ball's inner cube), (2, 2), (1, 3),
+/// (0, 4), (2, 6), (0, 6), (0, 8) and (0, 12) (the icosahedron); no other
+/// count can be met. For instance a junction of three curves, a curve
+/// ending inside, three valence-3 curves and one valence-5 curve, or a
+/// curve turning from valence 3 to valence 5 fail.
 ///
 /// An integer-grid map puts every node of the singular curves on a grid
 /// vertex, which becomes a vertex of the hexahedral mesh; around a node that
@@ -89,12 +93,11 @@ inline bool is_meshable(Singularity_type t) {
 /// \param minus_quarter the number of `minus_quarter` edges at the vertex
 /// \returns whether a hexahedral-mesh vertex can have these edges
 inline bool is_meshable_interior_node(std::size_t plus_quarter, std::size_t minus_quarter) {
-  const std::size_t sum = 3 * plus_quarter + minus_quarter;
-  if (sum % 2 != 0 || sum > 12) return false;
-  const std::size_t n = plus_quarter + minus_quarter + (12 - sum) / 2; // the link's vertices
-  if (n == 5) return plus_quarter == 2;                                // the bipyramid
-  if (n == 6) return plus_quarter == minus_quarter && plus_quarter % 2 == 0; // octahedron, (3, 3, 4, 4, 5, 5)
-  return true; // n = 4: the tetrahedron (4 plus, 0 minus); n > 6: not checked
+  static constexpr std::size_t types[11][2] = {{0, 0}, {2, 0}, {0, 2}, {4, 0}, {2, 2}, {1, 3},
+                                               {0, 4}, {2, 6}, {0, 6}, {0, 8}, {0, 12}};
+  for (const auto& t : types)
+    if (t[0] == plus_quarter && t[1] == minus_quarter) return true;
+  return false;
 }
 
 /// \ingroup PkgCGALExtFrames
@@ -472,11 +475,12 @@ namespace internal {
 // Where a vertex lies, for the judgement of the singular edges meeting there.
 enum class Vertex_place { interior, smooth_boundary, feature };
 
-// The nodes (vertices with other than two singular edges) whose singular
-// edges are all meshable and cannot meet there in a hexahedral mesh,
-// sorted: inside, failing is_meshable_interior_node(); on the boundary off
-// the features, three or more. A vertex with a non-meshable edge is left to
-// that edge. `place(v)` tells where vertex v lies.
+// The vertices whose singular edges are all meshable and cannot meet there
+// in a hexahedral mesh, sorted: inside, failing is_meshable_interior_node()
+// (nodes, and curves turning from +1/4 to -1/4); on the boundary off the
+// features, three or more (junctions; two, a curve touching the surface, is
+// left out). A vertex with a non-meshable edge is left to that edge.
+// `place(v)` tells where vertex v lies.
 template <class Place>
 std::vector<std::size_t> non_meshable_nodes(const std::vector<Singular_edge>& edges, Place place) {
   std::map<std::size_t, std::array<std::size_t, 3>> count; // +1/4, -1/4, others
@@ -485,10 +489,11 @@ std::vector<std::size_t> non_meshable_nodes(const std::vector<Singular_edge>& ed
       ++count[v][e.type == Singularity_type::plus_quarter ? 0 : e.type == Singularity_type::minus_quarter ? 1 : 2];
   std::vector<std::size_t> out;
   for (const auto& [v, c] : count) {
-    if (c[2] > 0 || c[0] + c[1] == 2) continue;
+    if (c[2] > 0) continue;
     const Vertex_place where = place(v);
     if (where == Vertex_place::interior ? !is_meshable_interior_node(c[0], c[1])
-                                        : where == Vertex_place::smooth_boundary && !is_meshable_smooth_boundary_node(c[0] + c[1]))
+                                        : where == Vertex_place::smooth_boundary && c[0] + c[1] != 2 &&
+                                              !is_meshable_smooth_boundary_node(c[0] + c[1]))
       out.push_back(v);
   }
   return out;
@@ -604,6 +609,18 @@ struct Singularity_graph {
   std::vector<std::size_t> surface_touches;
   /// Their positions.
   std::vector<Eigen::Vector3d> surface_touch_positions;
+  /// The interior vertices where a curve turns from `plus_quarter` to
+  /// `minus_quarter` (two singular edges, one of each: a curve folding
+  /// back, which no hexahedral-mesh vertex has; see
+  /// `is_meshable_interior_node()`), in increasing order.
+  std::vector<std::size_t> curve_turns;
+  /// Their positions.
+  std::vector<Eigen::Vector3d> curve_turn_positions;
+  /// The vertices the repair and the straightening count after the
+  /// non-meshable edges: the nodes that are not `meshable` and the curve
+  /// turns (not the surface touches).
+  /// \returns their number
+  std::size_t non_meshable_vertices() const { return non_meshable_nodes + curve_turns.size(); }
   /** @} */
 };
 
@@ -688,6 +705,11 @@ Singularity_graph singularity_graph(const Frame_field& ff, const std::vector<Sin
     for (std::size_t k : list)
       if (!used[k]) g.curves.push_back(trace(v, k));
   }
+  for (std::size_t v : bad_nodes)
+    if (incident.at(v).size() == 2) {
+      g.curve_turns.push_back(v);
+      g.curve_turn_positions.push_back(position[v]);
+    }
   for (const auto& [v, list] : incident)
     if (list.size() == 2 && place[v] == internal::Vertex_place::smooth_boundary &&
         is_meshable(edges[list[0]].type) && is_meshable(edges[list[1]].type)) {

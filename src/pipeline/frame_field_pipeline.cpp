@@ -251,11 +251,13 @@ Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric
   };
   r.non_meshable_edges = r.non_meshable_edges_unstraightened = non_meshable(r.singular_edges);
   r.graph = singularity_graph(ff, r.singular_edges);
-  r.non_meshable_nodes_unstraightened = r.non_meshable_nodes_straightened = r.graph.non_meshable_nodes;
+  r.non_meshable_nodes_unstraightened = r.non_meshable_nodes_straightened = r.graph.non_meshable_vertices();
   clock("singularities", std::to_string(r.singular_edges.size()) + " singular edges in " +
                              std::to_string(r.graph.curves.size()) + " curves, " + std::to_string(r.graph.nodes.size()) +
                              " nodes; " + std::to_string(r.non_meshable_edges) + " non-meshable edges, " +
                              std::to_string(r.graph.non_meshable_nodes) + " non-meshable nodes, " +
+                             (r.graph.curve_turns.empty() ? std::string()
+                                                          : std::to_string(r.graph.curve_turns.size()) + " curve turns, ") +
                              std::to_string(r.graph.surface_touches.size()) + " surface touches");
   if (straightening) {
     Singular_curve_straightening_report report;
@@ -264,7 +266,7 @@ Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric
     std::vector<Singular_edge> edges = singular_edges(ff, *r.matchings, nullptr, &moved);
     const std::size_t bad = non_meshable(edges);
     Singularity_graph graph = singularity_graph(ff, edges, &moved);
-    const std::size_t bad_nodes_before = r.graph.non_meshable_nodes, bad_nodes = graph.non_meshable_nodes;
+    const std::size_t bad_nodes_before = r.graph.non_meshable_vertices(), bad_nodes = graph.non_meshable_vertices();
     r.non_meshable_nodes_straightened = bad_nodes;
     // Kept unless the moves leave more non-meshable edges, or as many and more nodes.
     const bool keep = report.moved_vertices > 0 &&

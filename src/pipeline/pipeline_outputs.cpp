@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <map>
 #include <stdexcept>
+#include <string>
 
 namespace CGAL_ext {
 
@@ -121,6 +122,7 @@ void write_singularities_vtu(const std::string& path, const IO::Medit_mesh& mesh
                                                                                     : 3;
   for (const Singular_node& n : graph.nodes) vertex_meshable.values[local.at(n.vertex)] = n.meshable ? 1 : 0;
   for (std::size_t v : graph.surface_touches) vertex_meshable.values[local.at(v)] = 0;
+  for (std::size_t v : graph.curve_turns) vertex_meshable.values[local.at(v)] = 0;
   IO::write_vtu_segments(path, points, lines, {type, index, valence, meshable, turn, axis_angle, edge_axis_angle, axis, curve},
                          {vertex_id, node, vertex_meshable});
 }
@@ -223,7 +225,9 @@ std::string pipeline_summary_text(const Pipeline_tet_mesh& mesh, const Pipeline_
     ++listed;
   }
   if (frames.non_meshable_edges > listed) text += "    ... (all in report.json)\n";
-  std::snprintf(buf, sizeof buf, "  %-32s %zu\n", "non-meshable nodes", graph.non_meshable_nodes);
+  const std::string turns =
+      graph.curve_turns.empty() ? "" : " (and " + std::to_string(graph.curve_turns.size()) + " curve turns)";
+  std::snprintf(buf, sizeof buf, "  %-32s %zu%s\n", "non-meshable nodes", graph.non_meshable_nodes, turns.c_str());
   text += buf;
   listed = 0;
   for (const Singular_node& n : graph.nodes) {
@@ -235,6 +239,13 @@ std::string pipeline_summary_text(const Pipeline_tet_mesh& mesh, const Pipeline_
     ++listed;
   }
   if (graph.non_meshable_nodes > listed) text += "    ... (all in report.json)\n";
+  for (std::size_t k = 0; k < graph.curve_turns.size() && k < 5; ++k) { // none on the models measured
+    const Eigen::Vector3d& p = graph.curve_turn_positions[k];
+    std::snprintf(buf, sizeof buf, "    curve turning from +1/4 to -1/4 at vertex %zu (%.6g, %.6g, %.6g)\n",
+                  graph.curve_turns[k] + 1, p(0), p(1), p(2));
+    text += buf;
+  }
+  if (graph.curve_turns.size() > 5) text += "    ... (all in report.json)\n";
   std::snprintf(buf, sizeof buf, "  %-32s %zu\n", "curves touching the surface", graph.surface_touches.size());
   text += buf;
   for (std::size_t k = 0; k < graph.surface_touches.size() && k < 5; ++k) {
