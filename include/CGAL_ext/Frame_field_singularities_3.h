@@ -112,8 +112,8 @@ inline bool is_meshable_interior_node(std::size_t plus_quarter, std::size_t minu
 /// edge has two hexahedra and gives 1, so `3 plus + minus + 2 regular + m =
 /// 6` with `m >= 3` rim edges; of what is left, a single valence-3 edge
 /// (3 rim edges) or valence-5 edge (5 rim edges) fits, and two or three
-/// valence-5 edges (`m` = 4 or 3, no regular edge) would need more triangles
-/// between the inner vertices than a simple triangulation has. So at most
+/// valence-5 edges (`m` = 4 or 3, no regular edge) would need more edges
+/// between the inner vertices than a simplicial disc has. So at most
 /// one singular curve meets a smooth boundary at a vertex: a curve that
 /// touches the surface and goes back in, or runs along it, makes the map
 /// fold the surface into a crease there (the built-in torus: its cross
@@ -628,7 +628,11 @@ struct Singularity_graph {
 /// Groups singular edges into curves and nodes.
 ///
 /// Nodes are the vertices with 1, or 3 or more, incident singular edges;
-/// interior ones are judged by `is_meshable_interior_node()`.
+/// interior ones are judged by `is_meshable_interior_node()`, those on the
+/// boundary off the sharp features (`Frame_field_3::feature_vertex_kind()`)
+/// by `is_meshable_smooth_boundary_node()`. Vertices with two edges inside
+/// where a curve turns from `plus_quarter` to `minus_quarter`, and on the
+/// smooth boundary where a curve touches it, are listed apart.
 /// Curves run from node to node through vertices with exactly two singular
 /// edges; what remains are closed loops. Deterministic: curves start at the
 /// nodes in increasing vertex order and leave each along its edges in
