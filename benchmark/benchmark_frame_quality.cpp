@@ -238,9 +238,7 @@ Hex_run hex_pipeline(const Hex_tools& tools, const CGAL_ext::IO::Medit_mesh& mes
 
 // The measures of a computed field; `seconds`: the time it took (the time
 // of the matchings and singular curves is added). With `straighten`, those
-// of generate's output: the curves straightened (their moved vertices kept
-// unless they give more non-meshable edges, or as many and more
-// non-meshable nodes, as generate does).
+// of generate's output: the curves straightened.
 Quality measure(const Tr& tr, const Field& field, const Frames& ff, double seconds, const Hex_tools& tools,
                 const CGAL_ext::IO::Medit_mesh& mesh, double h, bool straighten = false) {
   Quality q;
@@ -249,15 +247,10 @@ Quality measure(const Tr& tr, const Field& field, const Frames& ff, double secon
   const CGAL_ext::Frame_field_matchings_3<Frames> matchings(ff);
   auto edges = CGAL_ext::singular_edges(ff, matchings);
   std::vector<Eigen::Vector3d> positions;
-  if (straighten) {
-    auto count = [&](const std::vector<CGAL_ext::Singular_edge>& e, const std::vector<Eigen::Vector3d>* p) {
-      return std::make_pair(std::count_if(e.begin(), e.end(), [](const auto& s) { return !CGAL_ext::is_meshable(s.type); }),
-                            CGAL_ext::singularity_graph(ff, e, p).non_meshable_vertices());
-    };
+  if (straighten) { // kept when any vertex moved, as generate does
     CGAL_ext::Singular_curve_straightening_report report;
     positions = CGAL_ext::straighten_singular_curves(ff, matchings, edges, {}, &report);
-    auto moved = CGAL_ext::singular_edges(ff, matchings, nullptr, &positions);
-    if (report.moved_vertices > 0 && count(moved, &positions) <= count(edges, nullptr)) edges.swap(moved);
+    if (report.moved_vertices > 0) edges = CGAL_ext::singular_edges(ff, matchings, nullptr, &positions);
     else positions.clear();
   }
   const std::vector<Eigen::Vector3d>* moved = positions.empty() ? nullptr : &positions;

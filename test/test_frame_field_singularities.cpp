@@ -338,6 +338,8 @@ TEST_CASE("straightening moves only the curves' interior vertices, turns no tetr
     }
     const Singularity_graph g = singularity_graph(*s->ff, again, &p);
     REQUIRE(g.curves.size() == 1);
+    CHECK(report.non_meshable_nodes_before == singularity_graph(*s->ff, sing).non_meshable_vertices());
+    CHECK(report.non_meshable_nodes_after == g.non_meshable_vertices());
     CHECK(g.curves[0].length < singularity_graph(*s->ff, sing).curves[0].length); // straighter, hence shorter
     CHECK(straighten_singular_curves(*s->ff, matchings, sing, options) == p); // deterministic
     if (step == 1.0) CHECK(report.refused_moves > 0); // whole steps would turn tetrahedra over
@@ -587,6 +589,61 @@ TEST_CASE("singularity graph: closed loops, curves from a junction back to it, b
   std::vector<std::size_t> expected = {J, T, U};
   std::sort(expected.begin(), expected.end());
   CHECK(internal::non_meshable_nodes(turning, place) == expected);
+}
+
+TEST_CASE("the straightening's guard: edges and nodes the moves made non-meshable, not those an edge hid",
+          "[singularities][straightening]") {
+  using Type = Singularity_type;
+  auto edge = [](std::size_t a, std::size_t b, Type t) {
+    Singular_edge e;
+    e.vertices = {a, b};
+    e.type = t;
+    return e;
+  };
+  // Vertex 9 lies on the smooth boundary, the others inside.
+  auto place = [](std::size_t v) { return v == 9 ? internal::Vertex_place::smooth_boundary : internal::Vertex_place::interior; };
+  auto sorted = [](std::vector<std::size_t> v) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+    return v;
+  };
+  // A +1/4 curve 0-1-2-3 and a -1/4 curve 4-5-6; their ends inside fail, before as after.
+  const std::vector<Singular_edge> before = {edge(0, 1, Type::plus_quarter), edge(1, 2, Type::plus_quarter),
+                                             edge(2, 3, Type::plus_quarter), edge(4, 5, Type::minus_quarter),
+                                             edge(5, 6, Type::minus_quarter)};
+  CHECK(internal::new_non_meshable_vertices(before, before, place).empty());
+  // Edge 1-2 turns to -1/4: curve turns at 1 and 2, from their edges' ends on.
+  std::vector<Singular_edge> after = before;
+  after[1].type = Type::minus_quarter;
+  CHECK(sorted(internal::new_non_meshable_vertices(before, after, place)) == std::vector<std::size_t>{0, 1, 2, 3});
+  // Edge 4-5 turns across: its ends (5 is then left to it, not judged as a node).
+  after = before;
+  after[3].type = Type::quarter_across;
+  CHECK(sorted(internal::new_non_meshable_vertices(before, after, place)) == std::vector<std::size_t>{4, 5});
+  // An edge across before that the moves made -1/4 next to a +1/4 one: the
+  // curve turn at 1 was hidden by the edge, and is not the moves' doing.
+  std::vector<Singular_edge> hidden = before;
+  hidden[1].type = Type::quarter_across;
+  after = hidden;
+  after[1].type = Type::minus_quarter;
+  CHECK(internal::non_meshable_nodes(after, place) == std::vector<std::size_t>{0, 1, 2, 3, 4, 6}); // with the ends inside
+  CHECK(internal::new_non_meshable_vertices(hidden, after, place).empty());
+  // A node that fails before as after (three +1/4 edges at 7 inside) is not new; a fourth
+  // edge there turning from +1/4 to -1/4 leaves it failing ((3, 1)), and is not new either.
+  std::vector<Singular_edge> junction = {edge(7, 10, Type::plus_quarter), edge(7, 11, Type::plus_quarter),
+                                         edge(7, 12, Type::plus_quarter)};
+  CHECK(internal::new_non_meshable_vertices(junction, junction, place).empty());
+  junction.push_back(edge(7, 13, Type::plus_quarter)); // (4, 0): meshable
+  after = junction;
+  after[3].type = Type::minus_quarter; // (3, 1): fails, and it did not
+  CHECK(sorted(internal::new_non_meshable_vertices(junction, after, place)) == std::vector<std::size_t>{7, 10, 11, 12, 13});
+  CHECK(internal::new_non_meshable_vertices(after, junction, place).empty()); // the other way round it is mended
+  // On the smooth boundary a junction fails whatever its types: retyping its edges adds nothing.
+  const std::vector<Singular_edge> surface = {edge(9, 10, Type::plus_quarter), edge(9, 11, Type::minus_quarter),
+                                              edge(9, 12, Type::minus_quarter)};
+  after = surface;
+  after[0].type = Type::minus_quarter;
+  CHECK(internal::new_non_meshable_vertices(surface, after, place).empty());
 }
 
 TEST_CASE("hexahedral-mesh vertices: the counts of valence-3 and valence-5 edges their links allow", "[singularities]") {

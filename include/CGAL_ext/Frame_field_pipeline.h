@@ -199,8 +199,7 @@ struct Pipeline_frame_field {
   double hex_size_factor_for_coverage_99 = 0;
   /// The positions of the vertices, by index, that the outputs use: the
   /// straightened ones (NaN at an index no tetrahedron uses), or empty for
-  /// the mesh's own (no straightening, none moved, or more non-meshable
-  /// edges with them).
+  /// the mesh's own (no straightening, or none moved).
   std::vector<Eigen::Vector3d> positions;
 };
 
@@ -220,8 +219,9 @@ Singular_curve_straightening_options pipeline_straightening_options(const Pipeli
 /// `repair` is set, and finds its matchings, singular edges and their graph.
 /// Then, if `straightening` is set, straightens the singular curves
 /// (`straighten_singular_curves()`) and types their edges again with the
-/// moved vertices; the moved positions are kept unless they give more
-/// non-meshable edges than the mesh's own.
+/// moved vertices; the moved positions are kept when any vertex moved (the
+/// straightening's guard leaves no more non-meshable edges than the mesh's
+/// own positions, nor as many and more non-meshable nodes).
 ///
 /// \param metric the metric field; it must outlive the result
 /// \param options the frame field's options; their `progress` reports the

@@ -27,6 +27,39 @@
 
 namespace CGAL_ext {
 
+namespace internal {
+
+// The defects that moved vertices made, for the straightening's guard: the
+// ends of the edges non-meshable in `after` and not in `before`, and the
+// non-meshable nodes and curve turns of `after` (with their edges' other
+// ends, since their types depend on those edges) that were neither that
+// nor the end of a non-meshable edge in `before`. `before` and `after` are
+// the same edges (by their vertices) typed with other positions; `place(v)`
+// tells where vertex v lies. Unsorted, with repeats.
+template <class Place>
+std::vector<std::size_t> new_non_meshable_vertices(const std::vector<Singular_edge>& before,
+                                                   const std::vector<Singular_edge>& after, Place place) {
+  std::set<std::array<std::size_t, 2>> bad_before;
+  std::set<std::size_t> judged; // non-meshable before, or left to a non-meshable edge
+  for (const Singular_edge& e : before)
+    if (!is_meshable(e.type)) {
+      bad_before.insert(e.vertices);
+      judged.insert(e.vertices.begin(), e.vertices.end());
+    }
+  for (std::size_t v : non_meshable_nodes(before, place)) judged.insert(v);
+  std::vector<std::size_t> out;
+  for (const Singular_edge& e : after)
+    if (!is_meshable(e.type) && !bad_before.count(e.vertices)) out.insert(out.end(), e.vertices.begin(), e.vertices.end());
+  for (std::size_t v : non_meshable_nodes(after, place)) {
+    if (judged.count(v)) continue;
+    for (const Singular_edge& e : after)
+      if (e.vertices[0] == v || e.vertices[1] == v) out.insert(out.end(), e.vertices.begin(), e.vertices.end());
+  }
+  return out;
+}
+
+} // namespace internal
+
 /// \ingroup PkgCGALExtFrames
 /// Options of `straighten_singular_curves()`.
 struct Singular_curve_straightening_options {
@@ -52,13 +85,19 @@ struct Singular_curve_straightening_report {
   std::size_t moved_vertices = 0;
   /// Moves refused because a tetrahedron would have turned over.
   std::size_t refused_moves = 0;
-  /// Moved vertices put back where they were, near an edge that the moves
-  /// made non-meshable (and where that would turn a tetrahedron over).
+  /// Moved vertices put back where they were, near an edge or a node that
+  /// the moves made non-meshable (and where that would turn a tetrahedron
+  /// over).
   std::size_t reverted_vertices = 0;
   /** @{ */
   /// Non-meshable singular edges with the mesh's positions and with the
   /// returned ones.
   std::size_t non_meshable_before = 0, non_meshable_after = 0;
+  /** @} */
+  /** @{ */
+  /// Non-meshable nodes and curve turns (`Singularity_graph::non_meshable_vertices()`)
+  /// with the mesh's positions and with the returned ones.
+  std::size_t non_meshable_nodes_before = 0, non_meshable_nodes_after = 0;
   /** @} */
   /// The largest displacement of a vertex, over the mean length of its two
   /// curve edges before.
@@ -79,13 +118,18 @@ struct Singular_curve_straightening_report {
 /// boundary, its features and the mesh's connectivity are unchanged. A
 /// closed loop has no node to hold it: each sweep shrinks it a little.
 ///
-/// Then no edge may become non-meshable: while the edges, typed with the
-/// moved positions, include a non-meshable one that was meshable, the moved
-/// vertices within `singular_curve_direction_span + 1` edges of it along
-/// the curves (those its type depends on) go back where they were, as do
-/// moved vertices of a tetrahedron that a put-back turned over. This ends
-/// at the latest with every vertex back, so the result never has more
-/// non-meshable edges than the mesh.
+/// Then no edge and no node may become non-meshable: while the edges, typed
+/// with the moved positions, include a non-meshable one that was meshable,
+/// or a vertex becomes a non-meshable node or curve turn (see
+/// `Singularity_graph::non_meshable_vertices()`) that was neither that nor
+/// the end of a non-meshable edge, the moved vertices within
+/// `singular_curve_direction_span + 1` edges of it along the curves (those
+/// its types depend on) go back where they were, as do moved vertices of a
+/// tetrahedron that a put-back turned over. This ends at the latest with
+/// every vertex back. So the result never has more non-meshable edges than
+/// the mesh, and where it has as many (the same ones), no more non-meshable
+/// nodes: a node may only show where a non-meshable edge that hid it became
+/// meshable.
 ///
 /// The field's frames and matchings are kept, not recomputed: with a metric
 /// that varies in space, the transports and energies of the moved cells
@@ -186,10 +230,12 @@ std::vector<Eigen::Vector3d> straighten_singular_curves(const Frame_field& ff,
     if (!neighbours[v].empty()) around.insert(around.end(), star.begin() + first[v], star.begin() + first[v + 1]);
   std::sort(around.begin(), around.end());
   around.erase(std::unique(around.begin(), around.end()), around.end());
-  std::set<std::array<std::size_t, 2>> bad_before;
-  for (const Singular_edge& e : edges)
-    if (!is_meshable(e.type)) bad_before.insert(e.vertices);
-  r.non_meshable_before = bad_before.size();
+  r.non_meshable_before = std::size_t(
+      std::count_if(edges.begin(), edges.end(), [](const Singular_edge& e) { return !is_meshable(e.type); }));
+  // Nodes are judged where the field's features put them, as `singularity_graph()` does.
+  const std::vector<internal::Vertex_place> place = internal::vertex_places(ff);
+  auto where = [&](std::size_t v) { return place[v]; };
+  r.non_meshable_nodes_before = internal::non_meshable_nodes(edges, where).size();
   auto put_back = [&](std::vector<std::size_t> queue) { // then the moved vertices of turned-over tetrahedra
     while (!queue.empty()) {
       for (std::size_t v : queue) p[v] = start[index_of(v)];
@@ -209,11 +255,10 @@ std::vector<Eigen::Vector3d> straighten_singular_curves(const Frame_field& ff,
   };
   for (;;) {
     const std::vector<Singular_edge> typed = singular_edges(ff, matchings, &around, &p);
-    std::vector<std::size_t> reached, ring;
-    for (const Singular_edge& e : typed)
-      if (!is_meshable(e.type) && !bad_before.count(e.vertices)) ring.insert(ring.end(), e.vertices.begin(), e.vertices.end());
+    std::vector<std::size_t> reached, ring = internal::new_non_meshable_vertices(edges, typed, where);
     r.non_meshable_after = std::size_t(
         std::count_if(typed.begin(), typed.end(), [](const Singular_edge& e) { return !is_meshable(e.type); }));
+    r.non_meshable_nodes_after = internal::non_meshable_nodes(typed, where).size();
     if (ring.empty()) break;
     // The vertices within reach along the curves.
     for (int depth = 0; depth <= singular_curve_direction_span + 1 && !ring.empty(); ++depth) {

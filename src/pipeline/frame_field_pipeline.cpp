@@ -268,9 +268,8 @@ Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric
     Singularity_graph graph = singularity_graph(ff, edges, &moved);
     const std::size_t bad_nodes_before = r.graph.non_meshable_vertices(), bad_nodes = graph.non_meshable_vertices();
     r.non_meshable_nodes_straightened = bad_nodes;
-    // Kept unless the moves leave more non-meshable edges, or as many and more nodes.
-    const bool keep = report.moved_vertices > 0 &&
-                      std::make_pair(bad, bad_nodes) <= std::make_pair(r.non_meshable_edges, bad_nodes_before);
+    // The straightening's guard leaves no more non-meshable edges, nor as many and more nodes.
+    const bool keep = report.moved_vertices > 0;
     r.non_meshable_edges_straightened = bad;
     if (keep) {
       r.positions = std::move(moved);
@@ -287,9 +286,7 @@ Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric
     const std::string before = std::to_string(r.non_meshable_edges_unstraightened) + " non-meshable edges and " +
                                std::to_string(bad_nodes_before) + " nodes",
                       after = std::to_string(bad) + " and " + std::to_string(bad_nodes);
-    const std::string detail = moves + (report.moved_vertices == 0 ? "nothing changed"
-                                        : keep ? before + " -> " + after
-                                               : after + " instead of " + before + ": the mesh's positions kept");
+    const std::string detail = moves + (keep ? before + " -> " + after : "nothing changed");
     clock("straightening", detail);
   }
   return r;
