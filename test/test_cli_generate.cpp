@@ -479,7 +479,7 @@ TEST_CASE("generate meshes a built-in shape with Mesh_3", "[cli][generate]") {
   }
 }
 
-TEST_CASE("generate straightens the singular curves: only their interior vertices move; --keep-vertices keeps all",
+TEST_CASE("generate straightens the singular curves: only their interior vertices move, and --keep-vertices keeps all",
           "[cli][generate][straightening]") {
   const auto moved_out = work / "ball_straightened", kept_out = work / "ball_kept";
   const Run a = run("generate builtin:ball --size 0.25 -o " + moved_out.string());
@@ -554,6 +554,9 @@ TEST_CASE("generate straightens the singular curves: only their interior vertice
   for (const auto& e : non_meshable(t1r)) CHECK(non_meshable(t2r).count(e) == 1);
   CHECK(number(t1r, "/straightening/non_meshable_after") <= number(t1r, "/straightening/non_meshable_before"));
   CHECK(number(t1r, "/straightening/non_meshable_with_moved") == number(t1r, "/straightening/non_meshable_after"));
+  // Nor more non-meshable nodes with as many edges (the guard keeps both).
+  CHECK(std::make_pair(number(t1r, "/straightening/non_meshable_after"), number(t1r, "/straightening/non_meshable_nodes_after")) <=
+        std::make_pair(number(t1r, "/straightening/non_meshable_before"), number(t1r, "/straightening/non_meshable_nodes_before")));
   CHECK(t1r["straightening"]["kept"] == true);
 
   // A vertex that no tetrahedron uses, first in the file, shifts every index; it is written where it was.
