@@ -1,7 +1,6 @@
 #!/usr/bin/env bash
 # Installs the dependencies, builds, and runs the whole test suite (what CI
-# runs): the Release build in ./build (after checking that every CTest test
-# runs one Catch2 test case: scripts/check_test_registration.py), Doxygen without warnings
+# runs): the Release build in ./build, Doxygen without warnings
 # (scripts/check_docs.sh), then the suite under AddressSanitizer
 # and UndefinedBehaviorSanitizer in ./build-sanitize with the libFuzzer
 # harnesses run for a fixed time (scripts/test_sanitize.sh,
@@ -11,7 +10,6 @@ cd "$(dirname "$0")/.."
 start=$(date +%s)
 bash scripts/install_dependencies.sh
 bash scripts/build.sh
-python3 scripts/check_test_registration.py build
 ctest --test-dir build --output-on-failure --timeout 900 -j2
 echo "[test] Release build and tests: $(( $(date +%s) - start )) s" >&2
 bash scripts/check_docs.sh
