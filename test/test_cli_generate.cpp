@@ -442,6 +442,26 @@ TEST_CASE("generate meshes a built-in shape with Mesh_3", "[cli][generate]") {
   CHECK(r.err.find("curves touching the surface") != std::string::npos);
   CHECK(report.at(nlohmann::json::json_pointer("/singularities/surface_touch_list")).size() ==
         number(report, "/singularities/surface_touches"));
+  // Short curves: exactly those from a junction under one hex edge in the metric (g scaled to the hex size).
+  std::set<double> junctions;
+  for (const auto& n : report.at(nlohmann::json::json_pointer("/singularities/node_list")))
+    if (n.at("kind") == "junction") junctions.insert(n.at("vertex").get<double>());
+  const auto& curve_list = report.at(nlohmann::json::json_pointer("/singularities/curve_list"));
+  std::vector<double> short_curves;
+  for (std::size_t k = 0; k < curve_list.size(); ++k) {
+    const auto& c = curve_list[k];
+    CHECK(c.at("metric_length").get<double>() == Approx(c.at("length").get<double>() / 0.35)); // identity metric
+    if (!c.at("closed").get<bool>() && c.at("metric_length").get<double>() < 1 &&
+        (junctions.count(c.at("ends")[0].get<double>()) || junctions.count(c.at("ends")[1].get<double>())))
+      short_curves.push_back(double(k));
+  }
+  std::vector<double> listed_short;
+  for (const auto& k : report.at(nlohmann::json::json_pointer("/singularities/short_curve_list"))) listed_short.push_back(k.get<double>());
+  CHECK(listed_short == short_curves);
+  CHECK(number(report, "/singularities/short_curves") == short_curves.size());
+  const std::size_t short_line = r.err.rfind("short curves from junctions"); // the summary's line, after the stage's
+  REQUIRE(short_line != std::string::npos);
+  CHECK(std::stoul(r.err.substr(short_line + 27)) == short_curves.size());
   // .perm: vector k of tet1 continues as sign(p_k) times vector |p_k| of tet2
   // (identity metric: no transport; neighbouring frames differ little).
   const CGAL_ext::IO::Perm_file perm = CGAL_ext::IO::read_perm((out / "frames.perm").string());

@@ -591,6 +591,62 @@ TEST_CASE("singularity graph: closed loops, curves from a junction back to it, b
   CHECK(internal::non_meshable_nodes(turning, place) == expected);
 }
 
+TEST_CASE("curves from a junction shorter than a hex edge in the metric are listed", "[singularities]") {
+  // The graph test's junction J = (2, 2, 1): two 3-edge curves from J back to J in the plane z = 1 (length
+  // 2 + sqrt 2), one edge down to the boundary vertex (2, 2, 0), and a square loop without nodes (length 8).
+  auto id = [](std::size_t i, std::size_t j, std::size_t k) { return (k * 5 + j) * 5 + i; };
+  auto edge = [](std::size_t a, std::size_t b) {
+    Singular_edge e;
+    e.vertices = {std::min(a, b), std::max(a, b)};
+    e.type = Singularity_type::minus_quarter;
+    return e;
+  };
+  const std::size_t J = id(2, 2, 1), B = id(2, 2, 0);
+  std::vector<Singular_edge> edges = {edge(id(1, 1, 1), id(3, 1, 1)), edge(id(3, 1, 1), id(3, 3, 1)),
+                                      edge(id(3, 3, 1), id(1, 3, 1)), edge(id(1, 3, 1), id(1, 1, 1)),
+                                      edge(J, id(2, 3, 1)),           edge(id(2, 3, 1), id(1, 2, 1)),
+                                      edge(id(1, 2, 1), J),           edge(J, id(3, 2, 1)),
+                                      edge(id(3, 2, 1), id(2, 1, 1)), edge(id(2, 1, 1), J),
+                                      edge(J, B)};
+  std::sort(edges.begin(), edges.end(), [](const Singular_edge& a, const Singular_edge& b) { return a.vertices < b.vertices; });
+  // g = diag(a^2, a^2, (0.4 + 0.4 z)^2): A is linear along the vertical edge, whose metric length is
+  // the integral of 0.4 + 0.4 z over [0, 1], 0.6, which the mean of its ends' A gives exactly.
+  auto graph = [&](double a) {
+    auto s = std::make_unique<Setup>();
+    s->m = grid();
+    build_triangulation_from_tets(s->m.points, s->m.tets, {}, s->tr);
+    s->field = std::make_unique<Field>(s->tr, [a](const Tr::Point& p) {
+      const double c = 0.4 + 0.4 * p.z();
+      return Eigen::Vector3d(a * a, a * a, c * c).asDiagonal().toDenseMatrix();
+    });
+    s->ff = std::make_unique<Frames>(*s->field);
+    s->ff->set_rotations([](std::size_t) { return Eigen::Matrix3d::Identity().eval(); });
+    return singularity_graph(*s->ff, edges);
+  };
+  for (double a : {1.0, 0.3, 0.1}) {
+    INFO("a = " << a);
+    const Singularity_graph g = graph(a);
+    REQUIRE(g.curves.size() == 4);
+    std::vector<std::size_t> expected;
+    for (std::size_t k = 0; k < g.curves.size(); ++k) {
+      const Singular_curve& c = g.curves[k];
+      if (c.closed) {
+        CHECK(c.metric_length == Approx(8 * a));
+      } else if (c.edges.size() == 1) {
+        CHECK(c.length == Approx(1));
+        CHECK(c.metric_length == Approx(0.6));
+        expected.push_back(k); // from the junction, under one unit
+      } else {
+        CHECK(c.metric_length == Approx(a * (2 + std::sqrt(2.0))));
+        if (a * (2 + std::sqrt(2.0)) < 1) expected.push_back(k);
+      }
+    }
+    CHECK(g.short_curves == expected); // never the loop: it has no junction, however short
+  }
+  CHECK(graph(0.3).short_curves.size() == 1);
+  CHECK(graph(0.1).short_curves.size() == 3);
+}
+
 TEST_CASE("the straightening's guard: edges and nodes the moves made non-meshable, not those an edge hid",
           "[singularities][straightening]") {
   using Type = Singularity_type;

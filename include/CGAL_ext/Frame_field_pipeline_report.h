@@ -43,6 +43,7 @@ inline nlohmann::ordered_json pipeline_singularities_json(const Pipeline_frame_f
   for (const Singular_curve& c : graph.curves)
     curves.push_back({{"edges", c.edges.size()},
                       {"length", c.length},
+                      {"metric_length", c.metric_length},
                       {"closed", c.closed},
                       {"ends", {c.vertices.front() + 1, c.vertices.back() + 1}},
                       {"+1/4", c.plus_quarter_edges},
@@ -56,6 +57,8 @@ inline nlohmann::ordered_json pipeline_singularities_json(const Pipeline_frame_f
                      {"meshable", n.meshable}});
   for (std::size_t k = 0; k < graph.surface_touches.size(); ++k)
     touches.push_back({{"vertex", graph.surface_touches[k] + 1}, {"position", point_json(graph.surface_touch_positions[k])}});
+  nlohmann::ordered_json short_curves = nlohmann::ordered_json::array(); // indices into curve_list, from 0
+  for (std::size_t k : graph.short_curves) short_curves.push_back(k);
   for (std::size_t k = 0; k < graph.curve_turns.size(); ++k)
     turns.push_back({{"vertex", graph.curve_turns[k] + 1}, {"position", point_json(graph.curve_turn_positions[k])}});
   return {{"edges", f.singular_edges.size()},
@@ -70,11 +73,13 @@ inline nlohmann::ordered_json pipeline_singularities_json(const Pipeline_frame_f
           {"non_meshable_nodes", graph.non_meshable_nodes},
           {"curve_turns", graph.curve_turns.size()},
           {"surface_touches", graph.surface_touches.size()},
+          {"short_curves", graph.short_curves.size()},
           {"non_meshable_edge_list", edges},
           {"curve_list", curves},
           {"node_list", nodes},
           {"curve_turn_list", turns},
-          {"surface_touch_list", touches}};
+          {"surface_touch_list", touches},
+          {"short_curve_list", short_curves}};
 }
 
 // The "repair" object, or null if the repair was not run.

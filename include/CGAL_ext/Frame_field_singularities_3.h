@@ -583,6 +583,11 @@ struct Singular_curve {
   bool closed = false;
   /// Its Euclidean length.
   double length = 0;
+  /// Its length in the metric: per edge, `|A (p1 - p0)|` with `A = g^{1/2}`
+  /// at the edge's midpoint (the mean of its ends', as `A` is linear along
+  /// the edge). In hexahedron edges where the metric sets the hex size, as
+  /// the pipeline's does.
+  double metric_length = 0;
   /** @{ */
   /// The numbers of its edges of each kind.
   std::size_t plus_quarter_edges = 0, minus_quarter_edges = 0, non_meshable_edges = 0;
@@ -616,6 +621,13 @@ struct Singularity_graph {
   std::vector<std::size_t> curve_turns;
   /// Their positions.
   std::vector<Eigen::Vector3d> curve_turn_positions;
+  /// The curves (indices in `curves`) from a junction shorter than one unit
+  /// in the metric (`Singular_curve::metric_length` < 1), in order. Where
+  /// the metric sets the hex size, an integer-grid map puts both ends of a
+  /// curve on grid vertices: one hex edge apart or more, or merged, and the
+  /// tetrahedra around such a curve are stretched or flattened. Not
+  /// counted as non-meshable: the map may still mesh them.
+  std::vector<std::size_t> short_curves;
   /// The vertices the repair and the straightening count after the
   /// non-meshable edges: the nodes that are not `meshable` and the curve
   /// turns (not the surface touches).
@@ -632,7 +644,8 @@ struct Singularity_graph {
 /// boundary off the sharp features (`Frame_field_3::feature_vertex_kind()`)
 /// by `is_meshable_smooth_boundary_node()`. Vertices with two edges inside
 /// where a curve turns from `plus_quarter` to `minus_quarter`, and on the
-/// smooth boundary where a curve touches it, are listed apart.
+/// smooth boundary where a curve touches it, are listed apart, as are the
+/// curves from a junction shorter than one unit in the metric.
 /// Curves run from node to node through vertices with exactly two singular
 /// edges; what remains are closed loops. Deterministic: curves start at the
 /// nodes in increasing vertex order and leave each along its edges in
@@ -654,13 +667,16 @@ Singularity_graph singularity_graph(const Frame_field& ff, const std::vector<Sin
   const auto incident = internal::edges_at_vertices(ends);
   // Positions and places of the vertices that singular edges touch.
   std::map<std::size_t, Eigen::Vector3d> position;
+  std::map<std::size_t, Eigen::Matrix3d> root; // A = g^{1/2}
   const std::vector<internal::Vertex_place> place = internal::vertex_places(ff);
   for (std::size_t i = 0; i < ff.size(); ++i)
     for (int k = 0; k < 4; ++k) {
       const Vertex_handle v = ff.cell(i)->vertex(k);
       const std::size_t j = ff.vertex_index(v);
-      if (incident.count(j) && !position.count(j))
+      if (incident.count(j) && !position.count(j)) {
         position[j] = positions ? (*positions)[j] : internal::to_eigen_vector(v->point());
+        root[j] = ff.metric_field().sqrt_metric(v);
+      }
     }
   auto other = [&](std::size_t k, std::size_t v) { return edges[k].vertices[0] == v ? edges[k].vertices[1] : edges[k].vertices[0]; };
   const std::vector<std::size_t> bad_nodes = internal::non_meshable_nodes(edges, [&](std::size_t v) { return place[v]; });
@@ -680,6 +696,7 @@ Singularity_graph singularity_graph(const Frame_field& ff, const std::vector<Sin
       else ++c.non_meshable_edges;
       const std::size_t w = other(k, v);
       c.length += (position[w] - position[v]).norm();
+      c.metric_length += (0.5 * (root[v] + root[w]) * (position[w] - position[v])).norm();
       c.vertices.push_back(w);
       v = w;
       const auto& list = incident.at(v);
@@ -720,6 +737,11 @@ Singularity_graph singularity_graph(const Frame_field& ff, const std::vector<Sin
       g.surface_touches.push_back(v);
       g.surface_touch_positions.push_back(position[v]);
     }
+  for (std::size_t k = 0; k < g.curves.size(); ++k) { // the open curves so far
+    const Singular_curve& c = g.curves[k];
+    auto junction = [&](std::size_t v) { return incident.at(v).size() >= 3; };
+    if (c.metric_length < 1 && (junction(c.vertices.front()) || junction(c.vertices.back()))) g.short_curves.push_back(k);
+  }
   for (const auto& [v, list] : incident)
     for (std::size_t k : list)
       if (!used[k]) {

@@ -258,7 +258,8 @@ Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric
                              std::to_string(r.graph.non_meshable_nodes) + " non-meshable nodes, " +
                              (r.graph.curve_turns.empty() ? std::string()
                                                           : std::to_string(r.graph.curve_turns.size()) + " curve turns, ") +
-                             std::to_string(r.graph.surface_touches.size()) + " surface touches");
+                             std::to_string(r.graph.surface_touches.size()) + " surface touches, " +
+                             std::to_string(r.graph.short_curves.size()) + " short curves from junctions");
   if (straightening) {
     Singular_curve_straightening_report report;
     std::vector<Eigen::Vector3d> moved =

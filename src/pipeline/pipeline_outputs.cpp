@@ -254,6 +254,15 @@ std::string pipeline_summary_text(const Pipeline_tet_mesh& mesh, const Pipeline_
     text += buf;
   }
   if (graph.surface_touches.size() > 5) text += "    ... (all in report.json)\n";
+  std::snprintf(buf, sizeof buf, "  %-32s %zu\n", "short curves from junctions", graph.short_curves.size());
+  text += buf;
+  for (std::size_t k = 0; k < graph.short_curves.size() && k < 5; ++k) {
+    const Singular_curve& c = graph.curves[graph.short_curves[k]];
+    std::snprintf(buf, sizeof buf, "    %.3g hex edges long, vertex %zu to %zu\n", c.metric_length, c.vertices.front() + 1,
+                  c.vertices.back() + 1);
+    text += buf;
+  }
+  if (graph.short_curves.size() > 5) text += "    ... (all in report.json)\n";
   return text;
 }
 
