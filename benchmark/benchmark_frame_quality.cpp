@@ -5,7 +5,9 @@
 // its default options (identity metric, Mesh_3 at the bounding-box diagonal
 // / 20 for surfaces and built-in shapes), model by model: what decides
 // whether an integer-grid map can mesh the field (singular edges of each
-// kind, curves, nodes, curves ending inside the volume) and how smooth it
+// kind, curves, nodes, curves ending inside the volume, non-meshable nodes,
+// curves touching the surface, curves from a junction shorter than a hex
+// edge of H times the diagonal) and how smooth it
 // is (face angles, energy, boundary alignment), and how it follows the
 // sharp features (the direction error of the feature edges, singular edges
 // at feature vertices). Side by side on the same mesh: generate's field
@@ -125,7 +127,7 @@ struct Hex_run {
 
 struct Quality {
   std::size_t tets = 0, singular = 0, plus = 0, minus = 0, non_meshable = 0, curves = 0, nodes = 0,
-              interior_ends = 0, non_meshable_nodes = 0, surface_touches = 0;
+              interior_ends = 0, non_meshable_nodes = 0, surface_touches = 0, short_curves = 0;
   double angle_mean = 0, angle_median = 0, energy_per_weight = 0, align_mean = 0, align_max = 0;
   // The features found at the default angle (whether the field used them or not).
   std::size_t feature_edges = 0, corners = 0;
@@ -269,6 +271,7 @@ Quality measure(const Tr& tr, const Field& field, const Frames& ff, double secon
   q.interior_ends = graph.interior_ends;
   q.non_meshable_nodes = graph.non_meshable_nodes;
   q.surface_touches = graph.surface_touches.size();
+  q.short_curves = CGAL_ext::short_singular_curves(graph, h).size(); // the identity metric: lengths in the model's units
   const CGAL_ext::Face_angle_statistics angles = matchings.face_angle_statistics(ff);
   q.angle_mean = angles.mean_deg;
   q.angle_median = angles.median_deg;
@@ -315,10 +318,10 @@ Quality measure(const Tr& tr, const Field& field, const Frames& ff, double secon
 }
 
 void print_row(const std::string& name, const char* variant, const Quality& q, double seconds_mesh) {
-  std::printf("%-22s %-12s %8zu %6zu %5zu %5zu %5zu %6zu %5zu %6zu %5zu %5zu %8.3f %8.3f %8.4f %7.3f %7.2f %6zu %6zu "
+  std::printf("%-22s %-12s %8zu %6zu %5zu %5zu %5zu %6zu %5zu %6zu %5zu %5zu %5zu %8.3f %8.3f %8.4f %7.3f %7.2f %6zu %6zu "
               "%7.2f %7.2f %5zu %5zu %7.1f %7.1f\n",
               name.c_str(), variant, q.tets, q.singular, q.plus, q.minus, q.non_meshable, q.curves, q.nodes,
-              q.interior_ends, q.non_meshable_nodes, q.surface_touches, q.angle_mean, q.angle_median, q.energy_per_weight, q.align_mean, q.align_max,
+              q.interior_ends, q.non_meshable_nodes, q.surface_touches, q.short_curves, q.angle_mean, q.angle_median, q.energy_per_weight, q.align_mean, q.align_max,
               q.feature_edges, q.corners, q.tangent_error_mean, q.tangent_error_max, q.singular_at_features,
               q.singular_along_features, seconds_mesh, q.seconds_field);
   if (q.hex_runs.size() == 1) {
@@ -447,7 +450,7 @@ int main(int argc, char** argv) {
               "and with features off and no repair (no features), on the same mesh.\n"
               "Singular edges: all, +1/4, -1/4, non-meshable (neither quarter turn about the edge); curves, nodes, curves\n"
               "ending inside the volume, non-meshable nodes (nm.nd), vertices where a curve touches the smooth surface\n"
-              "(touch); face angle between matched neighbouring frames (deg); energy per unit face weight; boundary\n"
+              "(touch), curves from a junction shorter than the middle hex size (short); face angle between matched neighbouring frames (deg); energy per unit face weight; boundary\n"
               "alignment error (deg); feature edges and corners (at the default angle); angle between\n"
               "a feature edge and the nearest frame axis (deg, mean and max over tetrahedra at feature edges); singular\n"
               "edges at a feature vertex (f.sing) and, of them, along the surface (f.surf); seconds for the mesh (Mesh_3\n"
@@ -462,8 +465,8 @@ int main(int argc, char** argv) {
                 tools.integergrid.c_str(), tools.hexex.c_str(), tools.fraction, tools.sizes, tools.size(1, 0),
                 tools.size(1, tools.sizes - 1));
   std::printf("\n");
-  std::printf("%-22s %-12s %8s %6s %5s %5s %5s %6s %5s %6s %5s %5s %8s %8s %8s %7s %7s %6s %6s %7s %7s %5s %5s %7s %7s\n",
-              "model", "variant", "tets", "sing", "+1/4", "-1/4", "nonm", "curves", "nodes", "in-end", "nm.nd", "touch",
+  std::printf("%-22s %-12s %8s %6s %5s %5s %5s %6s %5s %6s %5s %5s %5s %8s %8s %8s %7s %7s %6s %6s %7s %7s %5s %5s %7s %7s\n",
+              "model", "variant", "tets", "sing", "+1/4", "-1/4", "nonm", "curves", "nodes", "in-end", "nm.nd", "touch", "short",
               "ang.mean",
               "ang.med", "E/w", "al.mean", "al.max", "f.edge", "corner", "tan.mean", "tan.max", "f.sing", "f.surf",
               "mesh s", "field s");

@@ -645,6 +645,12 @@ TEST_CASE("curves from a junction shorter than a hex edge in the metric are list
   }
   CHECK(graph(0.3).short_curves.size() == 1);
   CHECK(graph(0.1).short_curves.size() == 3);
+  // Other units: the same rule against another length.
+  const Singularity_graph g = graph(1.0);
+  CHECK(short_singular_curves(g, 1) == g.short_curves);
+  CHECK(short_singular_curves(g, 0.5).empty()); // all 0.6 or longer
+  CHECK(short_singular_curves(g, 3.5).size() == 3); // 0.6, 2 + sqrt 2 twice; never the loop (8)
+  CHECK(short_singular_curves(g, 100).size() == 3);
 }
 
 TEST_CASE("the straightening's guard: edges and nodes the moves made non-meshable, not those an edge hid",

@@ -637,6 +637,28 @@ struct Singularity_graph {
 };
 
 /// \ingroup PkgCGALExtFrames
+/// The open curves of a graph from a junction whose `Singular_curve::metric_length`
+/// is below `unit` (`Singularity_graph::short_curves` for `unit` = 1, a hex
+/// edge where the metric sets the hex size; with a metric that does not,
+/// the hex edge in its units).
+/// \param graph the curves and nodes, as `singularity_graph()` returns them
+/// \param unit the length below which a curve is short
+/// \returns the indices of those curves in `graph.curves`, in increasing order
+inline std::vector<std::size_t> short_singular_curves(const Singularity_graph& graph, double unit) {
+  std::vector<std::size_t> junctions;
+  for (const Singular_node& n : graph.nodes)
+    if (n.kind == Singular_node::Kind::junction) junctions.push_back(n.vertex);
+  auto junction = [&](std::size_t v) { return std::binary_search(junctions.begin(), junctions.end(), v); };
+  std::vector<std::size_t> out;
+  for (std::size_t k = 0; k < graph.curves.size(); ++k) {
+    const Singular_curve& c = graph.curves[k];
+    if (!c.closed && c.metric_length < unit && (junction(c.vertices.front()) || junction(c.vertices.back())))
+      out.push_back(k);
+  }
+  return out;
+}
+
+/// \ingroup PkgCGALExtFrames
 /// Groups singular edges into curves and nodes.
 ///
 /// Nodes are the vertices with 1, or 3 or more, incident singular edges;
@@ -737,17 +759,13 @@ Singularity_graph singularity_graph(const Frame_field& ff, const std::vector<Sin
       g.surface_touches.push_back(v);
       g.surface_touch_positions.push_back(position[v]);
     }
-  for (std::size_t k = 0; k < g.curves.size(); ++k) { // the open curves so far
-    const Singular_curve& c = g.curves[k];
-    auto junction = [&](std::size_t v) { return incident.at(v).size() >= 3; };
-    if (c.metric_length < 1 && (junction(c.vertices.front()) || junction(c.vertices.back()))) g.short_curves.push_back(k);
-  }
   for (const auto& [v, list] : incident)
     for (std::size_t k : list)
       if (!used[k]) {
         g.curves.push_back(trace(v, k));
         ++g.closed_curves;
       }
+  g.short_curves = short_singular_curves(g, 1);
   return g;
 }
 
