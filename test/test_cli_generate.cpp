@@ -442,26 +442,6 @@ TEST_CASE("generate meshes a built-in shape with Mesh_3", "[cli][generate]") {
   CHECK(r.err.find("curves touching the surface") != std::string::npos);
   CHECK(report.at(nlohmann::json::json_pointer("/singularities/surface_touch_list")).size() ==
         number(report, "/singularities/surface_touches"));
-  // Short curves: exactly those from a junction under one hex edge in the metric (g scaled to the hex size).
-  std::set<double> junctions;
-  for (const auto& n : report.at(nlohmann::json::json_pointer("/singularities/node_list")))
-    if (n.at("kind") == "junction") junctions.insert(n.at("vertex").get<double>());
-  const auto& curve_list = report.at(nlohmann::json::json_pointer("/singularities/curve_list"));
-  std::vector<double> short_curves;
-  for (std::size_t k = 0; k < curve_list.size(); ++k) {
-    const auto& c = curve_list[k];
-    CHECK(c.at("metric_length").get<double>() == Approx(c.at("length").get<double>() / 0.35)); // identity metric
-    if (!c.at("closed").get<bool>() && c.at("metric_length").get<double>() < 1 &&
-        (junctions.count(c.at("ends")[0].get<double>()) || junctions.count(c.at("ends")[1].get<double>())))
-      short_curves.push_back(double(k));
-  }
-  std::vector<double> listed_short;
-  for (const auto& k : report.at(nlohmann::json::json_pointer("/singularities/short_curve_list"))) listed_short.push_back(k.get<double>());
-  CHECK(listed_short == short_curves);
-  CHECK(number(report, "/singularities/short_curves") == short_curves.size());
-  const std::size_t short_line = r.err.rfind("short curves from junctions"); // the summary's line, after the stage's
-  REQUIRE(short_line != std::string::npos);
-  CHECK(std::stoul(r.err.substr(short_line + 27)) == short_curves.size());
   // .perm: vector k of tet1 continues as sign(p_k) times vector |p_k| of tet2
   // (identity metric: no transport; neighbouring frames differ little).
   const CGAL_ext::IO::Perm_file perm = CGAL_ext::IO::read_perm((out / "frames.perm").string());
@@ -497,6 +477,42 @@ TEST_CASE("generate meshes a built-in shape with Mesh_3", "[cli][generate]") {
       }
     } while (std::next_permutation(q.begin(), q.end()));
   }
+}
+
+TEST_CASE("generate lists the curves from a junction shorter than a hex edge", "[cli][generate]") {
+  // The ball at two hex sizes (the same field, identity metric scaled to each): the larger has short curves.
+  std::size_t most = 0;
+  for (const double hex : {0.35, 0.45}) {
+    const auto out = work / ("ball_short_" + std::to_string(int(hex * 100)));
+    const Run r = run("generate builtin:ball --size 0.35 --hex-size " + std::to_string(hex) + " -o " + out.string());
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const nlohmann::json report = read_report(out);
+    // Exactly the open curves from a junction under one hex edge in the metric (g scaled to the hex size).
+    std::set<double> junctions;
+    for (const auto& n : report.at(nlohmann::json::json_pointer("/singularities/node_list")))
+      if (n.at("kind") == "junction") junctions.insert(n.at("vertex").get<double>());
+    const auto& curve_list = report.at(nlohmann::json::json_pointer("/singularities/curve_list"));
+    std::vector<double> short_curves; // 1-based, as singularities.vtu's curve numbers
+    for (std::size_t k = 0; k < curve_list.size(); ++k) {
+      const auto& c = curve_list[k];
+      CHECK(c.at("metric_length").get<double>() == Approx(c.at("length").get<double>() / hex)); // identity metric
+      if (!c.at("closed").get<bool>() && c.at("metric_length").get<double>() < 1 &&
+          (junctions.count(c.at("ends")[0].get<double>()) || junctions.count(c.at("ends")[1].get<double>())))
+        short_curves.push_back(double(k + 1));
+    }
+    std::vector<double> listed;
+    for (const auto& k : report.at(nlohmann::json::json_pointer("/singularities/short_curve_list")))
+      listed.push_back(k.get<double>());
+    CHECK(listed == short_curves);
+    CHECK(number(report, "/singularities/short_curves") == short_curves.size());
+    const std::string label = "short curves from junctions";
+    const std::size_t line = r.err.rfind(label); // the summary's line, after the stage's
+    REQUIRE(line != std::string::npos);
+    CHECK(std::stoul(r.err.substr(line + label.size())) == short_curves.size());
+    most = std::max(most, short_curves.size());
+  }
+  CHECK(most > 0); // the rule is exercised
 }
 
 TEST_CASE("generate straightens the singular curves: only their interior vertices move, and --keep-vertices keeps all",
@@ -574,6 +590,17 @@ TEST_CASE("generate straightens the singular curves: only their interior vertice
   for (const auto& e : non_meshable(t1r)) CHECK(non_meshable(t2r).count(e) == 1);
   CHECK(number(t1r, "/straightening/non_meshable_after") <= number(t1r, "/straightening/non_meshable_before"));
   CHECK(number(t1r, "/straightening/non_meshable_with_moved") == number(t1r, "/straightening/non_meshable_after"));
+  // Every non-meshable node or curve turn after the moves was one before, or the end of a non-meshable edge.
+  auto bad_vertices = [](const nlohmann::json& report) {
+    std::set<double> out;
+    for (const auto& n : report["singularities"]["node_list"])
+      if (!n["meshable"].get<bool>()) out.insert(n["vertex"].get<double>());
+    for (const auto& t : report["singularities"]["curve_turn_list"]) out.insert(t["vertex"].get<double>());
+    return out;
+  };
+  std::set<double> judged = bad_vertices(t2r);
+  for (const auto& e : non_meshable(t2r)) judged.insert({e.first, e.second});
+  for (double v : bad_vertices(t1r)) CHECK(judged.count(v) == 1);
   // Nor more non-meshable nodes with as many edges (the guard keeps both).
   CHECK(std::make_pair(number(t1r, "/straightening/non_meshable_after"), number(t1r, "/straightening/non_meshable_nodes_after")) <=
         std::make_pair(number(t1r, "/straightening/non_meshable_before"), number(t1r, "/straightening/non_meshable_nodes_before")));

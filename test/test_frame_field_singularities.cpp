@@ -319,7 +319,7 @@ TEST_CASE("straightening moves only the curves' interior vertices, turns no tetr
     CHECK(report.max_relative_displacement > 0);
     CHECK(report.non_meshable_before == 0);
     CHECK(report.non_meshable_after == 0);
-    CHECK(report.reverted_vertices == 0); // no edge turned non-meshable
+    CHECK(report.reverted_vertices == 0); // no edge or node turned non-meshable
     std::size_t moved = 0;
     for (std::size_t i = 0; i < n; ++i) {
       if (degree[i] == 2 && !boundary[i]) moved += p[i] != mesh[i];
@@ -338,6 +338,8 @@ TEST_CASE("straightening moves only the curves' interior vertices, turns no tetr
     }
     const Singularity_graph g = singularity_graph(*s->ff, again, &p);
     REQUIRE(g.curves.size() == 1);
+    const auto place = internal::vertex_places(*s->ff);
+    CHECK(internal::new_non_meshable_vertices(sing, again, [&](std::size_t i) { return place[i]; }).empty());
     CHECK(report.non_meshable_nodes_before == singularity_graph(*s->ff, sing).non_meshable_vertices());
     CHECK(report.non_meshable_nodes_after == g.non_meshable_vertices());
     CHECK(g.curves[0].length < singularity_graph(*s->ff, sing).curves[0].length); // straighter, hence shorter
@@ -690,11 +692,16 @@ TEST_CASE("the straightening's guard: edges and nodes the moves made non-meshabl
   after[1].type = Type::minus_quarter;
   CHECK(internal::non_meshable_nodes(after, place) == std::vector<std::size_t>{0, 1, 2, 3, 4, 6}); // with the ends inside
   CHECK(internal::new_non_meshable_vertices(hidden, after, place).empty());
-  // A node that fails before as after (three +1/4 edges at 7 inside) is not new; a fourth
-  // edge there turning from +1/4 to -1/4 leaves it failing ((3, 1)), and is not new either.
+  // A node that fails before as after is not new: three +1/4 edges at 7 inside ((3, 0)), one of
+  // them turning to -1/4 ((2, 1)). A fourth edge makes it meshable ((4, 0)); one of the four
+  // turning to -1/4 ((3, 1)) makes it fail anew.
   std::vector<Singular_edge> junction = {edge(7, 10, Type::plus_quarter), edge(7, 11, Type::plus_quarter),
                                          edge(7, 12, Type::plus_quarter)};
   CHECK(internal::new_non_meshable_vertices(junction, junction, place).empty());
+  after = junction;
+  after[2].type = Type::minus_quarter;
+  CHECK(internal::non_meshable_nodes(after, place) == std::vector<std::size_t>{7, 10, 11, 12});
+  CHECK(internal::new_non_meshable_vertices(junction, after, place).empty());
   junction.push_back(edge(7, 13, Type::plus_quarter)); // (4, 0): meshable
   after = junction;
   after[3].type = Type::minus_quarter; // (3, 1): fails, and it did not

@@ -178,8 +178,8 @@ struct Pipeline_frame_field {
   /// The non-meshable singular edges with the mesh's own positions (before
   /// the straightening).
   std::size_t non_meshable_edges_unstraightened = 0;
-  /// The non-meshable singular edges with the moved positions, whether they
-  /// were kept or not.
+  /// The non-meshable singular edges with the moved positions (those
+  /// written when any vertex moved).
   std::size_t non_meshable_edges_straightened = 0;
   /** @{ */
   /// The non-meshable nodes and curve turns

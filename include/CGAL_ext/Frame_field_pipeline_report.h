@@ -57,8 +57,8 @@ inline nlohmann::ordered_json pipeline_singularities_json(const Pipeline_frame_f
                      {"meshable", n.meshable}});
   for (std::size_t k = 0; k < graph.surface_touches.size(); ++k)
     touches.push_back({{"vertex", graph.surface_touches[k] + 1}, {"position", point_json(graph.surface_touch_positions[k])}});
-  nlohmann::ordered_json short_curves = nlohmann::ordered_json::array(); // indices into curve_list, from 0
-  for (std::size_t k : graph.short_curves) short_curves.push_back(k);
+  nlohmann::ordered_json short_curves = nlohmann::ordered_json::array(); // 1-based, as singularities.vtu's `curve`
+  for (std::size_t k : graph.short_curves) short_curves.push_back(k + 1);
   for (std::size_t k = 0; k < graph.curve_turns.size(); ++k)
     turns.push_back({{"vertex", graph.curve_turns[k] + 1}, {"position", point_json(graph.curve_turn_positions[k])}});
   return {{"edges", f.singular_edges.size()},

@@ -583,10 +583,10 @@ struct Singular_curve {
   bool closed = false;
   /// Its Euclidean length.
   double length = 0;
-  /// Its length in the metric: per edge, `|A (p1 - p0)|` with `A = g^{1/2}`
-  /// at the edge's midpoint (the mean of its ends', as `A` is linear along
-  /// the edge). In hexahedron edges where the metric sets the hex size, as
-  /// the pipeline's does.
+  /// Its length in the metric by the midpoint rule: per edge, `|A (p1 - p0)|`
+  /// with `A = g^{1/2}` at the edge's midpoint (the mean of its ends', as `A`
+  /// is linear along the edge). In hexahedron edges where the metric sets
+  /// the hex size, as the pipeline's does.
   double metric_length = 0;
   /** @{ */
   /// The numbers of its edges of each kind.
@@ -648,6 +648,7 @@ inline std::vector<std::size_t> short_singular_curves(const Singularity_graph& g
   std::vector<std::size_t> junctions;
   for (const Singular_node& n : graph.nodes)
     if (n.kind == Singular_node::Kind::junction) junctions.push_back(n.vertex);
+  std::sort(junctions.begin(), junctions.end());
   auto junction = [&](std::size_t v) { return std::binary_search(junctions.begin(), junctions.end(), v); };
   std::vector<std::size_t> out;
   for (std::size_t k = 0; k < graph.curves.size(); ++k) {

@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <map>
 #include <set>
 #include <stdexcept>
 #include <vector>
@@ -50,10 +51,15 @@ std::vector<std::size_t> new_non_meshable_vertices(const std::vector<Singular_ed
   std::vector<std::size_t> out;
   for (const Singular_edge& e : after)
     if (!is_meshable(e.type) && !bad_before.count(e.vertices)) out.insert(out.end(), e.vertices.begin(), e.vertices.end());
+  std::map<std::size_t, std::vector<std::size_t>> others; // the other ends of each vertex's edges
+  for (const Singular_edge& e : after) {
+    others[e.vertices[0]].push_back(e.vertices[1]);
+    others[e.vertices[1]].push_back(e.vertices[0]);
+  }
   for (std::size_t v : non_meshable_nodes(after, place)) {
     if (judged.count(v)) continue;
-    for (const Singular_edge& e : after)
-      if (e.vertices[0] == v || e.vertices[1] == v) out.insert(out.end(), e.vertices.begin(), e.vertices.end());
+    out.push_back(v);
+    out.insert(out.end(), others.at(v).begin(), others.at(v).end());
   }
   return out;
 }
@@ -141,7 +147,10 @@ struct Singular_curve_straightening_report {
 /// \tparam Frame_field a `Frame_field_3` after `compute()` or `set_rotations()`
 /// \param ff the frame field (for the mesh, its boundary and its positions)
 /// \param matchings its matchings (to type the edges with moved positions)
-/// \param edges its singular edges, as `singular_edges()` returns them
+/// \param edges its singular edges, as `singular_edges(ff, matchings)`
+///        returns them (the guard compares the moved positions' types with
+///        these; other edges void its guarantee, and the mesh's positions
+///        are then returned where it cannot put moves back)
 /// \param options the options
 /// \param report if not null, receives what was done
 /// \returns the positions of all vertices, by vertex index (those of the
@@ -274,7 +283,10 @@ std::vector<Eigen::Vector3d> straighten_singular_curves(const Frame_field& ff,
     }
     std::sort(back.begin(), back.end());
     back.erase(std::unique(back.begin(), back.end()), back.end());
-    if (back.empty()) break; // cannot happen: with every vertex back the types are the mesh's
+    if (back.empty()) { // only for `edges` other than the mesh's: every vertex back, the mesh as it is
+      for (std::size_t k = 0; k < movable.size(); ++k) p[movable[k]] = start[k];
+      break;
+    }
     put_back(back);
   }
 
