@@ -88,6 +88,17 @@ std::function<Eigen::Matrix3d(const Eigen::Vector3d&)> twist(double fraction, co
 // The 4 x 4 x 2 grid of unit cubes: the line x = y = 2 is 2 interior edges.
 testing::Test_mesh grid() { return testing::kuhn_grid(4, 4, 2, 1.0); }
 
+// The index of vertex (i, j, k) of grid().
+std::size_t grid_vertex(std::size_t i, std::size_t j, std::size_t k) { return (k * 5 + j) * 5 + i; }
+
+// A -1/4 singular edge between two vertices, given directly.
+Singular_edge minus_quarter_edge(std::size_t a, std::size_t b) {
+  Singular_edge e;
+  e.vertices = {std::min(a, b), std::max(a, b)};
+  e.type = Singularity_type::minus_quarter;
+  return e;
+}
+
 // Both singular edges on the line x = y = 2, with the type and turn given.
 void check_central_line(const Setup& s, const std::vector<Singular_edge>& sing, Singularity_type type, double turn) {
   REQUIRE(sing.size() == 2);
@@ -476,13 +487,8 @@ TEST_CASE("singularity graph: closed loops, curves from a junction back to it, b
   // Edges given directly on the 4 x 4 x 2 grid (vertex (i, j, k) has index
   // (k * 5 + j) * 5 + i): the graph needs only positions and the boundary.
   const auto s = field_on(grid(), twist(0, Eigen::Vector3d::UnitZ()));
-  auto id = [](std::size_t i, std::size_t j, std::size_t k) { return (k * 5 + j) * 5 + i; };
-  auto edge = [](std::size_t a, std::size_t b) {
-    Singular_edge e;
-    e.vertices = {std::min(a, b), std::max(a, b)};
-    e.type = Singularity_type::minus_quarter;
-    return e;
-  };
+  const auto id = grid_vertex;
+  const auto edge = minus_quarter_edge;
   std::vector<Singular_edge> edges;
   // A closed square loop in the plane k = 1, around (2, 2): all interior vertices.
   const std::size_t loop[4] = {id(1, 1, 1), id(3, 1, 1), id(3, 3, 1), id(1, 3, 1)};
@@ -596,13 +602,8 @@ TEST_CASE("singularity graph: closed loops, curves from a junction back to it, b
 TEST_CASE("curves from a junction shorter than a hex edge in the metric are listed", "[singularities]") {
   // The graph test's junction J = (2, 2, 1): two 3-edge curves from J back to J in the plane z = 1 (length
   // 2 + sqrt 2), one edge down to the boundary vertex (2, 2, 0), and a square loop without nodes (length 8).
-  auto id = [](std::size_t i, std::size_t j, std::size_t k) { return (k * 5 + j) * 5 + i; };
-  auto edge = [](std::size_t a, std::size_t b) {
-    Singular_edge e;
-    e.vertices = {std::min(a, b), std::max(a, b)};
-    e.type = Singularity_type::minus_quarter;
-    return e;
-  };
+  const auto id = grid_vertex;
+  const auto edge = minus_quarter_edge;
   const std::size_t J = id(2, 2, 1), B = id(2, 2, 0);
   std::vector<Singular_edge> edges = {edge(id(1, 1, 1), id(3, 1, 1)), edge(id(3, 1, 1), id(3, 3, 1)),
                                       edge(id(3, 3, 1), id(1, 3, 1)), edge(id(1, 3, 1), id(1, 1, 1)),
