@@ -321,7 +321,8 @@ void print_row(const std::string& name, const char* variant, const Quality& q, d
   std::printf("%-22s %-12s %8zu %6zu %5zu %5zu %5zu %6zu %5zu %6zu %5zu %5zu %5zu %8.3f %8.3f %8.4f %7.3f %7.2f %6zu %6zu "
               "%7.2f %7.2f %5zu %5zu %7.1f %7.1f\n",
               name.c_str(), variant, q.tets, q.singular, q.plus, q.minus, q.non_meshable, q.curves, q.nodes,
-              q.interior_ends, q.non_meshable_nodes, q.surface_touches, q.short_curves, q.angle_mean, q.angle_median, q.energy_per_weight, q.align_mean, q.align_max,
+              q.interior_ends, q.non_meshable_nodes, q.surface_touches, q.short_curves, q.angle_mean, q.angle_median,
+              q.energy_per_weight, q.align_mean, q.align_max,
               q.feature_edges, q.corners, q.tangent_error_mean, q.tangent_error_max, q.singular_at_features,
               q.singular_along_features, seconds_mesh, q.seconds_field);
   if (q.hex_runs.size() == 1) {
@@ -450,11 +451,12 @@ int main(int argc, char** argv) {
               "and with features off and no repair (no features), on the same mesh.\n"
               "Singular edges: all, +1/4, -1/4, non-meshable (neither quarter turn about the edge); curves, nodes, curves\n"
               "ending inside the volume, non-meshable nodes (nm.nd), vertices where a curve touches the smooth surface\n"
-              "(touch), curves from a junction shorter than the middle hex size (short); face angle between matched neighbouring frames (deg); energy per unit face weight; boundary\n"
-              "alignment error (deg); feature edges and corners (at the default angle); angle between\n"
-              "a feature edge and the nearest frame axis (deg, mean and max over tetrahedra at feature edges); singular\n"
-              "edges at a feature vertex (f.sing) and, of them, along the surface (f.surf); seconds for the mesh (Mesh_3\n"
-              "or reading) and for the field (frames, repair, matchings, singular curves).\n",
+              "(touch), curves from a junction shorter than the middle hex size (short); face angle between matched\n"
+              "neighbouring frames (deg); energy per unit face weight; boundary alignment error (deg); feature edges\n"
+              "and corners (at the default angle); angle between a feature edge and the nearest frame axis (deg, mean\n"
+              "and max over tetrahedra at feature edges); singular edges at a feature vertex (f.sing) and, of them,\n"
+              "along the surface (f.surf); seconds for the mesh (Mesh_3 or reading) and for the field (frames, repair,\n"
+              "matchings, singular curves).\n",
               tbb::info::default_concurrency());
   if (tools.enabled())
     std::printf("Hex meshes: CubeCover's integergrid (%s) and HexEx (%s), hexes of %.4g times the bounding-box\n"

@@ -266,9 +266,10 @@ private:
     // The examination types the edges of `examined` as singular_edges() on
     // it would. It reaches one ring beyond the typing of the edges near
     // `inner`: a node there has edges one ring further out, whose typing
-    // follows their curve `singular_curve_direction_span` edges on. Those of no tetrahedron of the batch keep their holonomy
-    // while the batch is re-optimised: found once (`outside`), and only the
-    // batch's own edges again after each start.
+    // follows their curve `singular_curve_direction_span` edges on. Those
+    // of no tetrahedron of the batch keep their holonomy while the batch is
+    // re-optimised: found once (`outside`), and only the batch's own edges
+    // again after each start.
     std::vector<internal::Singular_edge_holonomy> outside;
     {
       const std::vector<std::size_t> examined = region(seeds, reach + singular_curve_direction_span + 1);
