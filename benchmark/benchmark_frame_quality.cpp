@@ -18,7 +18,7 @@
 // with feature detection off (feature_angle_deg = 180, the boundary rule
 // before features, no repair: "no features").
 //
-//   benchmark_frame_quality [size_fraction=F] [hex_fraction=H] [hex_sizes=N] [INPUT ...]
+//   benchmark_frame_quality [size_fraction=F] [hex_fraction=H] [hex_sizes=N] [diffusion_steps=N] [INPUT ...]
 //
 // Hex columns: when the environment gives CubeCover's integer-grid tool and
 // HexEx's command-line tool, CGAL_EXT_INTEGERGRID=/path/to/integergrid and
@@ -40,6 +40,10 @@
 // inverted hexes, and how many runs meet issue 15's target (every hex's
 // scaled Jacobian > 0, coverage >= 0.99), flagged out of reach where the
 // ceiling at the sizes asked for is below 0.99.
+//
+// diffusion_steps=N: N diffusion-projection steps of the default length in
+// hex edges (Frame_field_options::diffusion_steps; generate --hex-size h
+// --diffusion-steps N), on the models without feature edges.
 //
 // INPUT: builtin:NAME, a closed surface (.off .obj .stl .ply) meshed by
 // Mesh_3, or a tet mesh (.mesh, e.g. written by TetGen or Gmsh). Without
@@ -375,7 +379,8 @@ void print_row(const std::string& name, const char* variant, const Quality& q, d
 }
 
 // The four variants of one model: no repair, repaired, straightened (generate's output), no features.
-void benchmark_model(const std::string& input, const std::string& name, double size_fraction, const Hex_tools& tools) {
+void benchmark_model(const std::string& input, const std::string& name, double size_fraction, const Hex_tools& tools,
+                     int diffusion_steps) {
   const auto t = std::chrono::steady_clock::now();
   const CGAL_ext::IO::Medit_mesh mesh = mesh_of(input, size_fraction);
   Tr tr;
@@ -385,8 +390,13 @@ void benchmark_model(const std::string& input, const std::string& name, double s
   const double h = diagonal(mesh.vertices) * tools.fraction;
   // Generate's default: features, then the repair of non-meshable edges.
   auto t_field = std::chrono::steady_clock::now();
+  // The identity metric in the model's units: the diffusion length in hex
+  // edges becomes h times it, as generate --hex-size h scales the metric.
+  CGAL_ext::Frame_field_options defaults;
+  defaults.diffusion_steps = diffusion_steps;
+  defaults.diffusion_length *= h;
   Frames ff(field);
-  ff.compute();
+  ff.compute(defaults);
   const double seconds_compute = since(t_field);
   print_row(name, "no repair", measure(tr, field, ff, seconds_compute, tools, mesh, h), seconds_mesh);
   t_field = std::chrono::steady_clock::now();
@@ -396,7 +406,7 @@ void benchmark_model(const std::string& input, const std::string& name, double s
   print_row(name, "straightened", measure(tr, field, ff, seconds_repaired, tools, mesh, h, true), seconds_mesh);
   t_field = std::chrono::steady_clock::now();
   Frames plain(field);
-  CGAL_ext::Frame_field_options options;
+  CGAL_ext::Frame_field_options options = defaults;
   options.feature_angle_deg = 180;
   plain.compute(options);
   print_row(name, "no features", measure(tr, field, plain, since(t_field), tools, mesh, h), seconds_mesh);
@@ -406,6 +416,7 @@ void benchmark_model(const std::string& input, const std::string& name, double s
 
 int main(int argc, char** argv) {
   double size_fraction = 0;
+  int diffusion_steps = CGAL_ext::Frame_field_options().diffusion_steps;
   Hex_tools tools;
   if (const char* p = std::getenv("CGAL_EXT_INTEGERGRID")) tools.integergrid = p;
   if (const char* p = std::getenv("CGAL_EXT_HEXEX")) tools.hexex = p;
@@ -430,8 +441,14 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "hex_sizes must be in [1, 101], got '%s'\n", arg.c_str() + 10);
         return 2;
       }
+    } else if (arg.rfind("diffusion_steps=", 0) == 0) {
+      diffusion_steps = std::atoi(arg.c_str() + 16);
+      if (!(diffusion_steps >= 0 && diffusion_steps <= 1000)) {
+        std::fprintf(stderr, "diffusion_steps must be in [0, 1000], got '%s'\n", arg.c_str() + 16);
+        return 2;
+      }
     } else if (arg == "-h" || arg == "--help") {
-      std::printf("usage: benchmark_frame_quality [size_fraction=F] [hex_fraction=H] [hex_sizes=N] [INPUT ...]\n"
+      std::printf("usage: benchmark_frame_quality [size_fraction=F] [hex_fraction=H] [hex_sizes=N] [diffusion_steps=N] [INPUT ...]\n"
                   "hex columns: set CGAL_EXT_INTEGERGRID and CGAL_EXT_HEXEX to the tools' paths\n"
                   "INPUT: builtin:NAME, a closed surface (.off .obj .stl .ply), or a tet mesh (.mesh)\n");
       return 0;
@@ -445,7 +462,8 @@ int main(int argc, char** argv) {
       for (const char* model : {"fandisk", "anchor", "joint", "rotor", "elephant"})
         inputs.push_back(std::string(dir) + "/" + model + ".off");
   }
-  std::printf("Frame-field quality with generate's default options (identity metric, Frame_field_options()), %d threads,\n"
+  std::printf("Frame-field quality with generate's default options (identity metric, Frame_field_options(), %d\n"
+              "diffusion steps of %g hex edges of the size below, as generate --hex-size scales them), %d threads,\n"
               "before and after the repair of non-meshable edges and nodes (no repair, repaired), after it with the\n"
               "singular curves straightened (straightened: generate's output, typed and meshed with the moved vertices),\n"
               "and with features off and no repair (no features), on the same mesh.\n"
@@ -457,7 +475,7 @@ int main(int argc, char** argv) {
               "and max over tetrahedra at feature edges); singular edges at a feature vertex (f.sing) and, of them,\n"
               "along the surface (f.surf); seconds for the mesh (Mesh_3 or reading) and for the field (frames, repair,\n"
               "matchings, singular curves).\n",
-              tbb::info::default_concurrency());
+              diffusion_steps, CGAL_ext::Frame_field_options().diffusion_length, tbb::info::default_concurrency());
   if (tools.enabled())
     std::printf("Hex meshes: CubeCover's integergrid (%s) and HexEx (%s), hexes of %.4g times the bounding-box\n"
                 "diagonal (%d sizes from %.4g to %.4g times it: median (least-largest)), measured by\n"
@@ -476,7 +494,7 @@ int main(int argc, char** argv) {
   for (const std::string& input : inputs) {
     const std::string name = input.rfind("builtin:", 0) == 0 ? input : std::filesystem::path(input).filename().string();
     try {
-      benchmark_model(input, name, size_fraction, tools);
+      benchmark_model(input, name, size_fraction, tools, diffusion_steps);
     } catch (const std::exception& e) {
       std::printf("%-22s error: %s\n", name.c_str(), e.what());
       ++failures;

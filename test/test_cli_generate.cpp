@@ -652,6 +652,39 @@ std::string scaled_mesh(const std::string& file, int e, const std::string& name)
 // field (the same energies, alignment, singularities), with every length
 // scaled exactly; a mesh whose size double cannot handle is refused before
 // any work, naming the file and the size.
+TEST_CASE("generate's --diffusion-steps reach the field: off by default, on the ball when asked, skipped on a box",
+          "[cli][generate][diffusion]") {
+  // The diffusion length is in hex edges: the same steps at two hex sizes
+  // with the length in proportion give the same field.
+  std::map<std::string, nlohmann::json> report;
+  for (const std::string& args :
+       {"builtin:ball --size 0.35 --hex-size 0.35", "builtin:ball --size 0.35 --hex-size 0.35 --diffusion-steps 2",
+        "builtin:ball --size 0.35 --hex-size 0.7 --diffusion-steps 2 --diffusion-length 1",
+        "builtin:cube --size 0.35 --diffusion-steps 2"}) {
+    const auto out = work / ("diffusion_" + std::to_string(report.size()));
+    const Run r = run("generate " + args + " -o " + out.string());
+    INFO(args << "\n" << r.err);
+    REQUIRE(r.exit_code == 0);
+    report[args] = read_report(out);
+  }
+  const auto& off = report["builtin:ball --size 0.35 --hex-size 0.35"];
+  const auto& on = report["builtin:ball --size 0.35 --hex-size 0.35 --diffusion-steps 2"];
+  const auto& half = report["builtin:ball --size 0.35 --hex-size 0.7 --diffusion-steps 2 --diffusion-length 1"];
+  const auto& cube = report["builtin:cube --size 0.35 --diffusion-steps 2"];
+  CHECK(number(off, "/diffusion/steps") == 0);
+  CHECK(number(off, "/diffusion/energy") == number(off, "/projected_energy"));
+  CHECK(number(on, "/diffusion/steps") == 2);
+  CHECK(number(on, "/diffusion/length") == 2);
+  CHECK(number(on, "/diffusion/iterations") > 0);
+  CHECK(number(on, "/diffusion/energy") != number(on, "/projected_energy"));
+  CHECK(number(half, "/diffusion/steps") == 2);
+  CHECK(number(half, "/smoothness_energy_per_weight") ==
+        Approx(number(on, "/smoothness_energy_per_weight")).epsilon(1e-6)); // 0.7 is 2 x 0.35 up to its last bit
+  CHECK(number(half, "/singular_edges") == number(on, "/singular_edges"));
+  CHECK(number(cube, "/sharp_features/edges") > 0);
+  CHECK(number(cube, "/diffusion/steps") == 0);
+}
+
 TEST_CASE("generate's --repair-rounds reaches the repair: its further rounds remove edges the first three leave",
           "[cli][generate][repair]") {
   // Without restarts in the second round, the first three rounds leave

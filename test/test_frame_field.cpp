@@ -24,6 +24,8 @@
 #include <map>
 #include <memory>
 #include <set>
+#include <stdexcept>
+#include <string>
 
 using namespace CGAL_ext;
 using Tr = Tet_mesh_triangulation_3<>;
@@ -541,4 +543,118 @@ TEST_CASE("iteration limits that stop a stage are reported", "[frame_field]") {
   CHECK(b.refinement_iteration_limit_reached);
   CHECK(lines["linear initialisation"].find("; stopped by the iteration limit") != std::string::npos);
   CHECK(lines["refinement"].find("; stopped by the iteration limit") != std::string::npos);
+}
+
+namespace {
+
+// The built-in ball at Mesh_3 size `size`: a smooth boundary, no feature edge.
+std::unique_ptr<Mesh> ball_mesh(double size) {
+  Tetrahedralize_options mo;
+  mo.size = size;
+  const IO::Medit_mesh ball = tetrahedralize_builtin("ball", mo);
+  testing::Test_mesh m;
+  m.points = ball.vertices;
+  m.tets = ball.tetrahedra;
+  return make_mesh(m);
+}
+
+double worst_frame_angle_deg(const Frames& a, const Frames& b) {
+  double worst = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, frame_angle_deg(a.rotation(i), b.rotation(i)));
+  return worst;
+}
+
+} // namespace
+
+// One diffusion step minimises the relaxed energy plus |x - s|_M^2 / tau
+// from the projected field s, which is itself the projection of the relaxed
+// energy's minimiser: so both a vanishing and an unbounded tau give back the
+// projected field, through opposite terms of the system (the mass and the
+// energy with its boundary terms); a length in between moves the frames.
+TEST_CASE("diffusion steps: a vanishing and an unbounded length give back the projected field", "[frame_field][diffusion]") {
+  auto mesh = ball_mesh(0.35);
+  const Field field(mesh->tr, Eigen::Matrix3d::Identity().eval());
+  Frame_field_options opt;
+  opt.linear_tolerance = 1e-12;
+  opt.max_refinement_iterations = 0;
+  opt.diffusion_steps = 0;
+  Frames projected(field);
+  const Frame_field_statistics p = projected.compute(opt);
+  REQUIRE(p.feature_edges == 0);
+  CHECK(p.diffusion_steps == 0);
+  opt.diffusion_steps = 1;
+  for (const double length : {1e-7, 1e7}) {
+    opt.diffusion_length = length;
+    Frames ff(field);
+    const Frame_field_statistics d = ff.compute(opt);
+    INFO("length " << length << ": " << d.diffusion_iterations << " CG iterations");
+    CHECK(d.diffusion_steps == 1);
+    CHECK(worst_frame_angle_deg(ff, projected) < 1e-3);
+    CHECK(d.diffused_energy == Approx(p.projected_energy).epsilon(1e-6));
+  }
+  opt.diffusion_length = 0.5; // a quarter of the ball's diameter
+  Frames ff(field);
+  const Frame_field_statistics d = ff.compute(opt);
+  CHECK(worst_frame_angle_deg(ff, projected) > 5);
+}
+
+TEST_CASE("diffusion steps run on domains without feature edges, or when asked", "[frame_field][diffusion]") {
+  auto box = pulled_back_box(4);
+  const Field field = flat_metric_field(box->tr);
+  std::map<std::string, std::string> lines;
+  Frame_field_options opt;
+  opt.progress = [&](const std::string& stage, double, const std::string& detail) { lines[stage] = detail; };
+  Frames off(field);
+  CHECK(off.compute(opt).diffusion_steps == 0); // off by default
+  CHECK(lines.count("diffusion") == 0);
+  opt.diffusion_steps = 3;
+  Frames skipped(field);
+  const Frame_field_statistics a = skipped.compute(opt);
+  REQUIRE(a.feature_edges > 0);
+  CHECK(a.diffusion_steps == 0);
+  CHECK(a.diffused_energy == a.projected_energy);
+  CHECK(lines["diffusion"] == "skipped: the domain has " + std::to_string(a.feature_edges) + " feature edges");
+  opt.diffusion_with_features = true;
+  Frames asked(field);
+  const Frame_field_statistics b = asked.compute(opt);
+  CHECK(b.diffusion_steps == opt.diffusion_steps);
+  CHECK(b.diffusion_iterations > 0);
+  CHECK(lines["diffusion"].rfind("3 steps of length 2, ", 0) == 0);
+  for (const double bad : {0.0, -1.0, std::nan(""), HUGE_VAL}) {
+    opt.diffusion_length = bad;
+    Frames ff(field);
+    CHECK_THROWS_AS(ff.compute(opt), std::invalid_argument);
+  }
+}
+
+TEST_CASE("diffusion steps: the same bits at any metric scale and any thread count", "[frame_field][diffusion]") {
+  // The length is in the metric's units: the metric times c with the length
+  // times sqrt(c) is the same field, bit for bit where c is a power of two
+  // (the system is taken in the weights' power-of-two units).
+  auto mesh = ball_mesh(0.35);
+  const Field unit(mesh->tr, Eigen::Matrix3d::Identity().eval());
+  Frame_field_options opt;
+  opt.diffusion_steps = 3;
+  opt.diffusion_length = 0.5;
+  Frames reference(unit);
+  const Frame_field_statistics st = reference.compute(opt);
+  REQUIRE(st.diffusion_steps == opt.diffusion_steps);
+  for (const int e : {-996, 996}) {
+    const Field field(mesh->tr, Eigen::Matrix3d(std::ldexp(1.0, e) * Eigen::Matrix3d::Identity()));
+    Frame_field_options scaled = opt;
+    scaled.diffusion_length = std::ldexp(opt.diffusion_length, e / 2);
+    Frames ff(field);
+    const Frame_field_statistics sc = ff.compute(scaled);
+    INFO("metric times 2^" << e);
+    CHECK(sc.diffusion_iterations == st.diffusion_iterations);
+    bool same = true;
+    for (std::size_t i = 0; i < ff.size(); ++i) same = same && ff.rotation(i) == reference.rotation(i);
+    CHECK(same);
+  }
+  tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
+  Frames one(unit);
+  one.compute(opt);
+  bool same = true;
+  for (std::size_t i = 0; i < one.size(); ++i) same = same && one.rotation(i) == reference.rotation(i);
+  CHECK(same);
 }

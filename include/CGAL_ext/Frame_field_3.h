@@ -15,6 +15,7 @@
 #include <CGAL_ext/Octahedral_frame.h>
 #include <CGAL_ext/Tet_mesh_triangulation_3.h>
 #include <CGAL_ext/internal/Frame_field_coarse_level_3.h>
+#include <CGAL_ext/internal/Frame_field_diffusion_3.h>
 #include <CGAL_ext/internal/Frame_field_energy_3.h>
 #include <CGAL_ext/internal/deterministic_parallel.h>
 #include <CGAL_ext/internal/lbfgs_on_rotations.h>
@@ -33,6 +34,8 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -148,6 +151,16 @@ public:
     stats_.projected_energy = smoothness_energy();
     stats_.seconds_projection = t.lap();
     report("projection", stats_.seconds_projection, "energy " + format_number(stats_.projected_energy));
+    diffuse();
+    stats_.seconds_diffusion = t.lap();
+    if (stats_.diffusion_steps > 0)
+      report("diffusion", stats_.seconds_diffusion,
+             std::to_string(stats_.diffusion_steps) + " steps of length " + format_number(opt_.diffusion_length) + ", " +
+                 std::to_string(stats_.diffusion_iterations) + " CG iterations, energy " +
+                 format_number(stats_.diffused_energy));
+    else if (opt_.diffusion_steps > 0 && stats_.feature_edges > 0 && !opt_.diffusion_with_features)
+      report("diffusion", stats_.seconds_diffusion,
+             "skipped: the domain has " + std::to_string(stats_.feature_edges) + " feature edges");
     refine();
     stats_.smoothness_energy = smoothness_energy();
     stats_.seconds_refinement = t.lap();
@@ -476,6 +489,8 @@ private:
         relres);
   }
 
+  bool use_coarse_level() const { return opt_.aggregate_size > 1 && size() >= std::size_t(8 * opt_.aggregate_size); }
+
   void linear_initialisation() {
     const std::size_t n = size();
     std::vector<Sh_vector> x(n, Sh_vector::Zero()), b(n, Sh_vector::Zero());
@@ -486,7 +501,7 @@ private:
     stats_.linear_residual = 0;
     stats_.coarse_unknowns = 0;
     if (internal::block_dot(b, b) > 0) {
-      if (opt_.aggregate_size > 1 && n >= std::size_t(8 * opt_.aggregate_size)) {
+      if (use_coarse_level()) {
         // Nested iteration: the coarse solution, prolonged, starts the fine
         // iteration with the smooth part of the solution already in place.
         const internal::Frame_field_coarse_level c = internal::build_coarse_level(e_, opt_.aggregate_size);
@@ -528,6 +543,30 @@ private:
   void constrain(std::size_t i) {
     if (opt_.hard_boundary && e_.constraint_of[i] >= 0) q_[i] = Energy::snap(q_[i], e_.constraints[e_.constraint_of[i]]);
     s_[i] = rotate_sh(q_[i], octahedral_reference_sh());
+  }
+
+  // The diffusion-projection (MBO) stage (Frame_field_options::diffusion_steps).
+  void diffuse() {
+    stats_.diffusion_steps = stats_.diffusion_iterations = 0;
+    stats_.diffused_energy = stats_.projected_energy;
+    if (opt_.diffusion_steps <= 0) return;
+    if (!(opt_.diffusion_length > 0) || !std::isfinite(opt_.diffusion_length))
+      throw std::invalid_argument("the diffusion length must be a positive finite number (got " +
+                                  format_number(opt_.diffusion_length) + ")");
+    if (stats_.feature_edges > 0 && !opt_.diffusion_with_features) return;
+    std::unique_ptr<internal::Frame_field_coarse_level> coarse;
+    if (use_coarse_level())
+      coarse = std::make_unique<internal::Frame_field_coarse_level>(internal::build_coarse_level(e_, opt_.aggregate_size));
+    for (int k = 0; k < opt_.diffusion_steps; ++k) {
+      double residual = 0;
+      stats_.diffusion_iterations +=
+          internal::implicit_diffusion_step(e_, s_, opt_.diffusion_length * opt_.diffusion_length,
+                                            10 * opt_.linear_tolerance, opt_.max_linear_iterations, residual,
+                                            coarse.get());
+      project();
+      ++stats_.diffusion_steps;
+    }
+    stats_.diffused_energy = smoothness_energy();
   }
 
   void project() {

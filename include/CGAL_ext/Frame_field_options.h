@@ -55,6 +55,28 @@ struct Frame_field_options {
   /// repair instead of 7; doc/benchmarks.md, "Creases shared alike"). Above
   /// 45: never.
   double crease_split_deg = 30;
+  /// Diffusion-projection (MBO) steps between the projection and the
+  /// refinement: each replaces the SH vectors by one implicit heat step of
+  /// the linear initialisation's energy, of length `diffusion_length`, and
+  /// projects them again, so that the refinement starts from a field smoothed
+  /// over that length. Each step's system is solved to 10 times
+  /// `linear_tolerance` (the projection that follows needs no more), from
+  /// the initialisation's coarse level and then on the tetrahedra. They run
+  /// only on domains without feature edges, unless `diffusion_with_features`.
+  /// Off by default: with hexes of the diagonal / 15 they lowered the energy
+  /// of the built-in ball by 14% and of blobby by 6%, but raised the torus'
+  /// by 1% and made one of its fields unmeshable, and on CAD parts they left
+  /// more non-meshable edges (doc/benchmarks.md, "Diffusion at the hex
+  /// scale"). 0: none.
+  int diffusion_steps = 0;
+  /// The length `sqrt(tau)` of each diffusion step, in the metric's unit
+  /// length: hex edges, as `metric-frames generate` scales the metric. A
+  /// length far above the hex size (a metric of the model's units, say)
+  /// smooths towards the initialisation's solution, which the steps then
+  /// merely approximate.
+  double diffusion_length = 2;
+  /// Whether the diffusion steps run on domains with feature edges too.
+  bool diffusion_with_features = false;
   /// Tolerance in radians of each face transport `T(i->j)`.
   double transport_tolerance = 1e-6;
   /// The transport scheme.
@@ -133,6 +155,13 @@ struct Frame_field_statistics {
   int refinement_iterations = 0, energy_evaluations = 0;
   /** @} */
   /** @{ */
+  /// The diffusion steps made (0 if none, or skipped on a domain with
+  /// feature edges) and their conjugate-gradient iterations in all.
+  int diffusion_steps = 0, diffusion_iterations = 0;
+  /** @} */
+  /// The energy after the diffusion steps (the projected energy if none).
+  double diffused_energy = 0;
+  /** @{ */
   /// Whether an iteration bound stopped a stage (`max_linear_iterations`
   /// before the CG residual reached `linear_tolerance`, or
   /// `max_refinement_iterations` while L-BFGS still made progress): reached
@@ -156,9 +185,9 @@ struct Frame_field_statistics {
   double max_orthonormality_error = 0;
   /** @{ */
   /// Seconds per stage: set-up (geometry, weights), face transports, linear
-  /// initialisation, projection, refinement.
+  /// initialisation, projection, diffusion, refinement.
   double seconds_setup = 0, seconds_transports = 0, seconds_linear = 0, seconds_projection = 0,
-         seconds_refinement = 0;
+         seconds_diffusion = 0, seconds_refinement = 0;
   /** @} */
 };
 

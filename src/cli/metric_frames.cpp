@@ -300,6 +300,20 @@ CLI::App* add_generate(CLI::App& app, Generate_request& r) {
       ->check(positive_finite)
       ->capture_default_str();
   sub.add_flag("--soft-boundary", r.soft_boundary, "no hard boundary constraint after the projection");
+  sub.add_option("--diffusion-steps", r.options.diffusion_steps,
+                 "diffusion-projection steps before the refinement, on domains without sharp features (see "
+                 "--diffusion-with-features): the field smoothed over --diffusion-length first; on smooth shapes "
+                 "a lower energy, not always a better hex mesh (0: none)")
+      ->type_name("N")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  sub.add_option("--diffusion-length", r.options.diffusion_length,
+                 "length of each diffusion step, in hex edges (the metric's unit length)")
+      ->type_name("L")
+      ->check(positive_finite)
+      ->capture_default_str();
+  sub.add_flag("--diffusion-with-features", r.options.diffusion_with_features,
+               "run the diffusion steps on domains with sharp features too");
   sub.add_option("--feature-angle", r.options.feature_angle_deg,
                  "boundary edges whose faces' normals differ by more than A degrees (in the metric) are sharp "
                  "features: the frames follow them, and Mesh_3 keeps them sharp (180: no features)")
