@@ -64,7 +64,7 @@ struct Frame_field_options {
   /// the initialisation's coarse level and then on the tetrahedra. They run
   /// only on domains without feature edges, unless `diffusion_with_features`.
   /// Off by default: with hexes of the diagonal / 15 they lowered the energy
-  /// of the built-in ball by 14% and of blobby by 6%, but raised the torus'
+  /// of the built-in ball by 13-15% and of blobby by 6%, but raised the torus'
   /// by 1% and made one of its fields unmeshable, and on CAD parts they left
   /// more non-meshable edges (doc/benchmarks.md, "Diffusion at the hex
   /// scale"). 0: none.
