@@ -95,8 +95,11 @@ namespace CGAL_ext {
 /// 9x9 blocks `D(T)` are applied from the stored transports, so memory stays
 /// linear with a small constant); (2) projection of each `s_i` onto the
 /// octahedral variety (`rotation_from_octahedral_sh()`: coarse search plus
-/// Newton on SO(3)); (3) L-BFGS on local rotations `R_i <- exp([w_i]_x) R_i`
-/// with Armijo backtracking, until the energy converges.
+/// Newton on SO(3)); optionally, diffusion-projection steps
+/// (`Frame_field_options::diffusion_steps`, off by default: implicit heat
+/// steps of the initialisation's energy, each projected again); (3) L-BFGS
+/// on local rotations `R_i <- exp([w_i]_x) R_i` with Armijo backtracking,
+/// until the energy converges.
 ///
 /// **Determinism.** Every parallel loop writes per-tetrahedron data only, and
 /// every sum is made of fixed blocks added in order, so the result does not
