@@ -34,7 +34,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -164,6 +164,7 @@ public:
     else if (opt_.diffusion_steps > 0 && stats_.feature_edges > 0 && !opt_.diffusion_with_features)
       report("diffusion", stats_.seconds_diffusion,
              "skipped: the domain has " + std::to_string(stats_.feature_edges) + " feature edges");
+    coarse_.reset();
     refine();
     stats_.smoothness_energy = smoothness_energy();
     stats_.seconds_refinement = t.lap();
@@ -493,6 +494,12 @@ private:
   }
 
   bool use_coarse_level() const { return opt_.aggregate_size > 1 && size() >= std::size_t(8 * opt_.aggregate_size); }
+  // The coarse level, built once for the initialisation and the diffusion
+  // steps; compute() frees it before the refinement.
+  const internal::Frame_field_coarse_level& coarse_level() {
+    if (!coarse_) coarse_ = internal::build_coarse_level(e_, opt_.aggregate_size);
+    return *coarse_;
+  }
 
   void linear_initialisation() {
     const std::size_t n = size();
@@ -507,7 +514,7 @@ private:
       if (use_coarse_level()) {
         // Nested iteration: the coarse solution, prolonged, starts the fine
         // iteration with the smooth part of the solution already in place.
-        const internal::Frame_field_coarse_level c = internal::build_coarse_level(e_, opt_.aggregate_size);
+        const internal::Frame_field_coarse_level& c = coarse_level();
         const std::size_t na = c.rows.size();
         std::vector<Sh_vector> xc(na, Sh_vector::Zero()), bc(na, Sh_vector::Zero());
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, na, 16), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -517,13 +524,7 @@ private:
               if (e_.constraint_of[t] >= 0) bc[a] += rotate_sh(c.U[t].conjugate(), b[t]);
             }
         });
-        auto apply_coarse = [&](const std::vector<Sh_vector>& v, std::vector<Sh_vector>& y) {
-          internal::parallel_for_each_index(na, [&](std::size_t a) {
-            Sh_vector sum = Sh_vector::Zero();
-            for (const auto& [J, B] : c.rows[a]) sum += B * v[J];
-            y[a] = sum;
-          });
-        };
+        auto apply_coarse = [&](const std::vector<Sh_vector>& v, std::vector<Sh_vector>& y) { c.apply(v, y); };
         double coarse_residual = 0;
         stats_.coarse_iterations =
             pcg(xc, bc, apply_coarse, [&](std::size_t a, const Sh_vector& r) { return Sh_vector(c.diagonal_inverse[a] * r); },
@@ -557,15 +558,13 @@ private:
       throw std::invalid_argument("the diffusion length must be a positive finite number (got " +
                                   format_number(opt_.diffusion_length) + ")");
     if (stats_.feature_edges > 0 && !opt_.diffusion_with_features) return;
-    std::unique_ptr<internal::Frame_field_coarse_level> coarse;
-    if (use_coarse_level())
-      coarse = std::make_unique<internal::Frame_field_coarse_level>(internal::build_coarse_level(e_, opt_.aggregate_size));
+    const internal::Frame_field_coarse_level* coarse = use_coarse_level() ? &coarse_level() : nullptr;
     for (int k = 0; k < opt_.diffusion_steps; ++k) {
       double residual = 0;
       stats_.diffusion_iterations +=
           internal::implicit_diffusion_step(e_, s_, opt_.diffusion_length * opt_.diffusion_length,
                                             10 * opt_.linear_tolerance, opt_.max_linear_iterations, residual,
-                                            coarse.get());
+                                            coarse);
       project();
       ++stats_.diffusion_steps;
     }
@@ -655,6 +654,7 @@ private:
   std::vector<Sh_vector> s_;
   std::vector<Eigen::Quaterniond> q_;
   std::vector<char> marked_;       // scratch of Marked: all 0 between calls
+  std::optional<internal::Frame_field_coarse_level> coarse_; // between the initialisation and the refinement
   std::vector<std::size_t> local_; // scratch of Marked: all size_t(-1) between calls
   bool prepared_ = false;
 };

@@ -9,6 +9,7 @@
 /// conjugate gradients with the smooth part of the solution in place).
 
 #include <CGAL_ext/Octahedral_frame.h>
+#include <CGAL_ext/internal/deterministic_parallel.h>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -43,6 +44,17 @@ struct Frame_field_coarse_level {
   std::vector<std::vector<std::pair<std::size_t, Sh_matrix>>> rows;
   /// Per aggregate, the inverse of its diagonal block (the preconditioner).
   std::vector<Sh_matrix> diagonal_inverse;
+
+  /// `y = P^T H P v`, over the aggregates in parallel.
+  /// \param v one SH vector per aggregate
+  /// \param y gets the product, one per aggregate (sized by the caller)
+  void apply(const std::vector<Sh_vector>& v, std::vector<Sh_vector>& y) const {
+    parallel_for_each_index(rows.size(), [&](std::size_t a) {
+      Sh_vector sum = Sh_vector::Zero();
+      for (const auto& [J, B] : rows[a]) sum += B * v[J];
+      y[a] = sum;
+    });
+  }
 };
 
 /// Builds the coarse level of an energy.

@@ -95,11 +95,8 @@ int implicit_diffusion_step(const Energy& e, std::vector<Sh_vector>& s, double t
     preconditioned_conjugate_gradient(
         c, rc,
         [&](const std::vector<Sh_vector>& v, std::vector<Sh_vector>& y) {
-          parallel_for_each_index(na, [&](std::size_t a) {
-            Sh_vector sum = Sh_vector::Zero();
-            for (const auto& [J, B] : coarse->rows[a]) sum += B * v[J];
-            y[a] = coarse_mass[a] * v[a] + tau * sum;
-          });
+          coarse->apply(v, y);
+          parallel_for_each_index(na, [&](std::size_t a) { y[a] = coarse_mass[a] * v[a] + tau * y[a]; });
         },
         [&](std::size_t a, const Sh_vector& r) { return Sh_vector(coarse_block[a] * r); }, 0.01 * tolerance,
         max_iterations, [](int, double) {}, coarse_residual);
