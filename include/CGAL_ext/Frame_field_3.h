@@ -154,16 +154,9 @@ public:
     stats_.projected_energy = smoothness_energy();
     stats_.seconds_projection = t.lap();
     report("projection", stats_.seconds_projection, "energy " + format_number(stats_.projected_energy));
-    diffuse();
+    const std::string diffusion = diffuse();
     stats_.seconds_diffusion = t.lap();
-    if (stats_.diffusion_steps > 0)
-      report("diffusion", stats_.seconds_diffusion,
-             std::to_string(stats_.diffusion_steps) + " steps of length " + format_number(opt_.diffusion_length) + ", " +
-                 std::to_string(stats_.diffusion_iterations) + " CG iterations, energy " +
-                 format_number(stats_.diffused_energy));
-    else if (opt_.diffusion_steps > 0 && stats_.feature_edges > 0 && !opt_.diffusion_with_features)
-      report("diffusion", stats_.seconds_diffusion,
-             "skipped: the domain has " + std::to_string(stats_.feature_edges) + " feature edges");
+    if (!diffusion.empty()) report("diffusion", stats_.seconds_diffusion, diffusion);
     coarse_.reset();
     refine();
     stats_.smoothness_energy = smoothness_energy();
@@ -550,14 +543,16 @@ private:
   }
 
   // The diffusion-projection (MBO) stage (Frame_field_options::diffusion_steps).
-  void diffuse() {
+  // Returns what it did or why it did nothing, for the stage line; empty when off.
+  std::string diffuse() {
     stats_.diffusion_steps = stats_.diffusion_iterations = 0;
     stats_.diffused_energy = stats_.projected_energy;
-    if (opt_.diffusion_steps <= 0) return;
+    if (opt_.diffusion_steps <= 0) return {};
     if (!(opt_.diffusion_length > 0) || !std::isfinite(opt_.diffusion_length))
       throw std::invalid_argument("the diffusion length must be a positive finite number (got " +
                                   format_number(opt_.diffusion_length) + ")");
-    if (stats_.feature_edges > 0 && !opt_.diffusion_with_features) return;
+    if (stats_.feature_edges > 0 && !opt_.diffusion_with_features)
+      return "skipped: the domain has " + std::to_string(stats_.feature_edges) + " feature edges";
     const internal::Frame_field_coarse_level* coarse = use_coarse_level() ? &coarse_level() : nullptr;
     for (int k = 0; k < opt_.diffusion_steps; ++k) {
       double residual = 0;
@@ -569,6 +564,9 @@ private:
       ++stats_.diffusion_steps;
     }
     stats_.diffused_energy = smoothness_energy();
+    return std::to_string(stats_.diffusion_steps) + " steps of length " + format_number(opt_.diffusion_length) + ", " +
+           std::to_string(stats_.diffusion_iterations) + " CG iterations, energy " +
+           format_number(stats_.diffused_energy);
   }
 
   void project() {
