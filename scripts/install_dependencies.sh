@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages that CGAL Metric Frames needs to build and
-# test. Idempotent: apt-get runs only if a package is missing. Needs root
-# (or sudo) on Debian bookworm.
+# test (or those given as arguments). Idempotent: apt-get runs only if a
+# package is missing. Needs root (or sudo) on Debian bookworm.
 set -euo pipefail
 
 # libmuparser-dev, libcli11-dev and nlohmann-json3-dev: the metric-frames
@@ -11,6 +11,9 @@ set -euo pipefail
 # documentation, checked without warnings by CI (scripts/check_docs.sh).
 packages=(build-essential cmake libcgal-dev libeigen3-dev libboost-dev catch2 libtbb-dev libgmp-dev libmpfr-dev
           libmuparser-dev libcli11-dev nlohmann-json3-dev python3 clang libclang-rt-14-dev doxygen)
+# Other packages given as arguments are installed instead, the same way
+# (scripts/make_benchmark_meshes.sh: libcgal-demo, tetgen, gmsh).
+if [ $# -gt 0 ]; then packages=("$@"); fi
 
 missing=()
 for p in "${packages[@]}"; do

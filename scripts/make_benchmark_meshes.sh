@@ -21,18 +21,7 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 out="${1:-$root/build/benchmark-meshes}"
 models=(fandisk anchor joint)
 
-packages=()
-for p in libcgal-demo tetgen gmsh python3; do
-  if [ "$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null)" != "install ok installed" ]; then packages+=("$p"); fi
-done
-if [ ${#packages[@]} -gt 0 ]; then
-  echo "[meshes] installing: ${packages[*]}" >&2
-  sudo_cmd=()
-  if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
-  export DEBIAN_FRONTEND=noninteractive
-  "${sudo_cmd[@]}" apt-get update -qq
-  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${packages[@]}"
-fi
+bash "$root/scripts/install_dependencies.sh" libcgal-demo tetgen gmsh python3
 
 mkdir -p "$out/tetgen" "$out/gmsh"
 if [ ! -d "$out/data/meshes" ]; then
