@@ -6,6 +6,7 @@
 // with their sharp edges protected.
 #include <CGAL_ext/Frame_field_3.h>
 #include <CGAL_ext/Frame_field_singularities_3.h>
+#include <CGAL_ext/IO/read_tet_mesh.h>
 #include <CGAL_ext/Metric_field_3.h>
 #include <CGAL_ext/Sharp_features_3.h>
 #include <CGAL_ext/build_triangulation_from_tets.h>
@@ -20,6 +21,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <stdexcept>
 #include <vector>
 
@@ -380,6 +382,72 @@ TEST_CASE("lone kinks of a coarsely meshed smooth surface are not features", "[s
   CHECK(features.number_of_corners() == 0);
   // At 20 degrees the kinks join into long curves and are kept.
   CHECK(Features(field, 20).feature_edges().size() > 10);
+}
+
+TEST_CASE("spurs: feature curves of fewer than 3 edges that hang from a junction are not features",
+          "[sharp_features]") {
+  // Gmsh's anchor (CGAL's data/meshes/anchor.off) at a uniform size
+  // (data/gmsh_anchor.geo): where its coarsely meshed fillets meet the
+  // creases, single facet pairs just beyond 40 degrees branch off them.
+  const std::string path = std::string(CGAL_EXT_TEST_DATA_DIR) + "/gmsh_anchor.mesh";
+  IO::Medit_mesh mesh;
+  Tr tr;
+  IO::read_tet_mesh(path, tr, &mesh);
+  const Field field(tr, Eigen::Matrix3d::Identity().eval());
+  const Features features(field, 40);
+  using Graph = std::map<std::size_t, std::vector<std::size_t>>; // the edges at each vertex
+  // The edges sharper than 40 degrees, found here from the mesh's boundary
+  // facets (those of one tetrahedron, normals away from its fourth vertex).
+  std::map<std::array<std::size_t, 3>, std::pair<Eigen::Vector3d, int>> facets;
+  auto point = [&](std::size_t v) { return Eigen::Vector3d(mesh.vertices[v][0], mesh.vertices[v][1], mesh.vertices[v][2]); };
+  for (const auto& t : mesh.tetrahedra)
+    for (int k = 0; k < 4; ++k) {
+      std::array<std::size_t, 3> f;
+      for (int j = 0, m = 0; j < 4; ++j)
+        if (j != k) f[m++] = t[j];
+      std::sort(f.begin(), f.end());
+      Eigen::Vector3d n = (point(f[1]) - point(f[0])).cross(point(f[2]) - point(f[0])).normalized();
+      if (n.dot(point(t[k]) - point(f[0])) > 0) n = -n;
+      auto& entry = facets[f];
+      entry.first = n, ++entry.second;
+    }
+  std::map<std::pair<std::size_t, std::size_t>, std::vector<Eigen::Vector3d>> normals_at_edge;
+  for (const auto& [f, entry] : facets)
+    if (entry.second == 1)
+      for (auto [i, j] : {std::pair(0, 1), std::pair(0, 2), std::pair(1, 2)})
+        normals_at_edge[{f[i], f[j]}].push_back(entry.first);
+  Graph raw, kept;
+  for (const auto& [e, n] : normals_at_edge)
+    if (n.size() == 2 && n[0].dot(n[1]) < std::cos(40 * M_PI / 180))
+      raw[e.first].push_back(e.second), raw[e.second].push_back(e.first);
+  for (const auto& e : features.feature_edges()) kept[e.source].push_back(e.target), kept[e.target].push_back(e.source);
+  // The free ends whose curve reaches a junction within fewer than 3 edges.
+  auto spur_ends = [](Graph& g) {
+    std::size_t count = 0;
+    for (const auto& [v, nb] : g) {
+      if (nb.size() != 1) continue;
+      std::size_t previous = v, w = nb[0], length = 1;
+      while (g[w].size() == 2 && length < 3) {
+        const std::size_t next = g[w][0] == previous ? g[w][1] : g[w][0];
+        previous = w, w = next, ++length;
+      }
+      count += g[w].size() >= 3 && length < 3;
+    }
+    return count;
+  };
+  const std::size_t raw_edges = features.feature_edges().size() + features.number_of_dropped_edges();
+  std::size_t raw_count = 0;
+  for (const auto& [v, nb] : raw) raw_count += nb.size();
+  REQUIRE(raw_count / 2 == raw_edges); // the same sharp edges, before the drops
+  CHECK(spur_ends(raw) >= 5);
+  CHECK(spur_ends(kept) == 0);
+  // What is dropped is only those: the creases and their junctions stay.
+  CHECK(features.number_of_dropped_edges() < raw_edges / 10);
+  CHECK(std::count_if(kept.begin(), kept.end(), [](const auto& v) { return v.second.size() >= 3; }) >= 8);
+  for (const auto& [v, nb] : kept) {
+    INFO("vertex " << v);
+    for (std::size_t w : nb) CHECK(std::find(raw[v].begin(), raw[v].end(), w) != raw[v].end());
+  }
 }
 
 TEST_CASE("the feature angle must be in [0, 180] degrees", "[sharp_features]") {

@@ -66,9 +66,11 @@ enum class Feature_vertex_kind {
 /// boundary edge with other than two boundary facets (where parts of the
 /// domain meet along an edge) is always a feature edge.
 ///
-/// Feature curves of fewer than 3 edges that meet no other feature curve are
-/// dropped as lone kinks of a coarsely meshed smooth surface (see
-/// `number_of_dropped_edges()`).
+/// Feature curves of fewer than 3 edges are below the mesh's resolution and
+/// are dropped (see `number_of_dropped_edges()`): those that meet no other
+/// feature curve (lone kinks of a coarsely meshed smooth surface), and those
+/// with a free end that hang from a junction of curves (spurs, where a
+/// coarsely meshed fillet meets a crease), until none is left.
 ///
 /// **Vertices.** A boundary vertex on no feature edge is `none`. A vertex on
 /// exactly two feature edges that turn by at most `feature_angle_deg` (in the
@@ -201,15 +203,16 @@ public:
   /// The number of corners.
   /// \returns the number of vertices of kind `corner`
   std::size_t number_of_corners() const { return corners_; }
-  /// The number of edges sharper than the angle that were dropped as lone
-  /// kinks (feature curves of fewer than 3 edges meeting no other feature).
+  /// The number of edges sharper than the angle that were dropped: lone
+  /// kinks (feature curves of fewer than 3 edges meeting no other feature)
+  /// and spurs (curves of fewer than 3 edges from a free end to a junction).
   /// \returns the number of dropped edges (not in `feature_edges()`)
   std::size_t number_of_dropped_edges() const { return dropped_; }
   /// The number of boundary facets.
   /// \returns the number of facets between a domain cell and a cell outside it
   std::size_t number_of_boundary_facets() const { return facets_.size(); }
   /// The turning of the boundary's smooth part: over the boundary edges with
-  /// two facets that are not feature edges (dropped kinks included), the
+  /// two facets that are not feature edges (dropped kinks and spurs included), the
   /// edge's length in the metric times the angle between the facets' metric
   /// normals, signed (negative where the boundary is concave). On a faceted
   /// surface this is the integral of twice the mean curvature, `k1 + k2`, over
@@ -283,27 +286,54 @@ private:
     }
   }
 
-  // Feature curves of fewer than 3 edges that meet no other feature (a
-  // lone kink between two facets of a coarsely meshed smooth surface, e.g.
-  // Mesh_3's torus at the diagonal / 20) are dropped: every tetrahedron
-  // around their ends would take a corner's frame that fits none of the
-  // surface. Edges where parts of the domain meet are always kept.
+  // Feature curves of fewer than 3 edges are below the mesh's resolution:
+  // those that meet no other feature (a lone kink between two facets of a
+  // coarsely meshed smooth surface, e.g. Mesh_3's torus at the diagonal /
+  // 20) and those with a free end that hang from a junction of curves (a
+  // spur: where a coarsely meshed fillet meets a crease, a facet pair just
+  // beyond the angle, e.g. Gmsh's anchor at a uniform size) are dropped,
+  // until none is left (dropping two spurs of a junction can leave a third):
+  // every tetrahedron around their ends would take a corner's frame that
+  // fits none of the surface. Edges where parts of the domain meet are
+  // always kept.
   void drop_short_curves() {
     const std::size_t nv = vertices_.size();
-    std::vector<std::size_t> parent(nv);
-    for (std::size_t v = 0; v < nv; ++v) parent[v] = v;
+    std::vector<std::size_t> parent(nv), size(nv);
+    std::vector<std::vector<std::size_t>> at(nv);
     auto root = [&](std::size_t v) {
       while (parent[v] != v) v = parent[v] = parent[parent[v]];
       return v;
     };
-    for (const Feature_edge& e : edges_) parent[root(e.source)] = root(e.target);
-    std::vector<std::size_t> size(nv, 0);
-    for (const Feature_edge& e : edges_) ++size[root(e.source)];
-    std::vector<Feature_edge> kept;
-    for (const Feature_edge& e : edges_)
-      if (e.facets != 2 || size[root(e.source)] >= 3) kept.push_back(e);
-      else ++dropped_, smooth_turning_ += e.turning;
-    edges_.swap(kept);
+    for (bool dropping = true; dropping;) {
+      for (std::size_t v = 0; v < nv; ++v) parent[v] = v, size[v] = 0, at[v].clear();
+      for (const Feature_edge& e : edges_) parent[root(e.source)] = root(e.target);
+      for (std::size_t k = 0; k < edges_.size(); ++k) {
+        ++size[root(edges_[k].source)];
+        at[edges_[k].source].push_back(k), at[edges_[k].target].push_back(k);
+      }
+      std::vector<char> drop(edges_.size(), 0);
+      for (std::size_t k = 0; k < edges_.size(); ++k) drop[k] = edges_[k].facets == 2 && size[root(edges_[k].source)] < 3;
+      for (std::size_t v = 0; v < nv; ++v) { // spurs from their free end v
+        if (at[v].size() != 1 || drop[at[v][0]]) continue;
+        std::size_t path[2], length = 0, w = v, k = at[v][0];
+        bool manifold = true;
+        while (length < 2) {
+          path[length++] = k;
+          manifold = manifold && edges_[k].facets == 2;
+          w = edges_[k].source == w ? edges_[k].target : edges_[k].source;
+          if (at[w].size() != 2) break;
+          k = at[w][0] == k ? at[w][1] : at[w][0];
+        }
+        if (manifold && at[w].size() >= 3)
+          for (std::size_t j = 0; j < length; ++j) drop[path[j]] = 1;
+      }
+      std::vector<Feature_edge> kept;
+      for (std::size_t k = 0; k < edges_.size(); ++k)
+        if (!drop[k]) kept.push_back(edges_[k]);
+        else ++dropped_, smooth_turning_ += edges_[k].turning;
+      dropping = kept.size() < edges_.size();
+      edges_.swap(kept);
+    }
   }
 
   // Vertices: the feature edges at each vertex, and its incident facets,
