@@ -19,6 +19,8 @@
 #include <CGAL_ext/build_triangulation_from_tets.h>
 #include <CGAL_ext/tetrahedralize.h>
 
+#include "run_reporting_errors.h"
+
 #include <sys/resource.h>
 #include <tbb/info.h>
 
@@ -42,7 +44,7 @@ double since(std::chrono::steady_clock::time_point t) {
 }
 } // namespace
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   if (argc < 3) {
     std::fprintf(stderr, "usage: benchmark_frame_field INPUT SIZE [SIZE ...] [linear_tolerance=T] [energy_tolerance=T]\n"
                          "       [aggregate_size=N] [repair_rounds=N] [trace]   (INPUT: surface file or builtin:NAME)\n");
@@ -120,4 +122,8 @@ int main(int argc, char** argv) {
   std::printf("\n* total: from the mesh to the singular edges (triangulation, metric, frame field, repair of\n"
               "  non-meshable edges, singular edges), without Mesh_3 and without writing files.\n");
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return benchmark_meshes::run_reporting_errors("benchmark_frame_field", [&] { return run(argc, argv); });
 }

@@ -22,6 +22,7 @@
 #include <CGAL_ext/internal/Tet_mesh_overlap.h>
 
 #include "kuhn_grid.h"
+#include "run_reporting_errors.h"
 
 #include <algorithm>
 #include <array>
@@ -49,7 +50,7 @@ double median_seconds(int repeats, const std::function<void()>& f) {
 
 } // namespace
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   const bool from_file = argc > 1 && std::string(argv[1]).find(".mesh") != std::string::npos;
   const int n = argc > 1 && !from_file ? std::atoi(argv[1]) : 55;
   const double jitter = argc > 2 && !from_file ? std::atof(argv[2]) : 0.15;
@@ -117,4 +118,8 @@ int main(int argc, char** argv) {
   std::printf("  all overlap tests:              %.3f s (%4.1f%%); the build without them %.3f s (ratio %.2f)\n", checks,
               100 * checks / build, build - checks, build / (build - checks));
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return benchmark_meshes::run_reporting_errors("benchmark_mesh_input", [&] { return run(argc, argv); });
 }
