@@ -112,7 +112,9 @@ TEST_CASE("generate writes the six files, and the identity metric on a cube give
   CHECK(number(report, "/sharp_features/angle_deg") == 40);
   CHECK(number(report, "/sharp_features/corners") == 8);
   CHECK(number(report, "/sharp_features/curve_vertices") > 0);
+  CHECK(number(report, "/sharp_features/dropped_edges") == 0);
   CHECK(r.err.find("sharp features") != std::string::npos);
+  CHECK(r.err.find("sharp edges dropped") == std::string::npos);
   // Flat faces and right-angled edges: hexes can cover it all at any size.
   CHECK(number(report, "/hex_coverage_ceiling/coverage") == 1);
   CHECK(number(report, "/hex_coverage_ceiling/smooth_turning") == 0);
@@ -683,6 +685,20 @@ TEST_CASE("generate's --diffusion-steps reach the field: off by default, on the 
   CHECK(number(half, "/singular_edges") == number(on, "/singular_edges"));
   CHECK(number(cube, "/sharp_features/edges") > 0);
   CHECK(number(cube, "/diffusion/steps") == 0);
+}
+
+TEST_CASE("generate reports the sharp edges it drops as below the mesh's resolution", "[cli][generate]") {
+  // Gmsh's anchor at a uniform size: spurs where its coarse fillets meet the creases.
+  const auto out = work / "gmsh_anchor";
+  const Run r = run("generate " + data_dir + "/gmsh_anchor.mesh --no-repair -o " + out.string());
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const nlohmann::json report = read_report(out);
+  const double dropped = number(report, "/sharp_features/dropped_edges");
+  CHECK(dropped > 0);
+  CHECK(number(report, "/sharp_features/edges") > 10 * dropped);
+  CHECK(r.err.find("; " + std::to_string(int(dropped)) + " sharp edges dropped (curves of 1 or 2 edges)") !=
+        std::string::npos);
 }
 
 TEST_CASE("generate's --repair-rounds reaches the repair: its further rounds remove edges the first three leave",

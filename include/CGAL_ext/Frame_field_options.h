@@ -128,6 +128,10 @@ struct Frame_field_statistics {
   /// Feature edges, vertices on feature curves and corners (`Sharp_features_3`).
   std::size_t feature_edges = 0, feature_curve_vertices = 0, feature_corners = 0;
   /** @} */
+  /// Edges sharper than the feature angle that are not features: curves of
+  /// fewer than 3 edges, below the mesh's resolution (lone kinks and spurs,
+  /// `Sharp_features_3::number_of_dropped_edges()`).
+  std::size_t feature_edges_dropped = 0;
   /// Tetrahedra whose hard axes come from a feature: a corner's frame or a
   /// feature edge's tangent.
   std::size_t feature_tets = 0;

@@ -181,6 +181,7 @@ inline nlohmann::ordered_json pipeline_report(const Pipeline_tet_mesh& mesh, con
         {"edges", st.feature_edges},
         {"curve_vertices", st.feature_curve_vertices},
         {"corners", st.feature_corners},
+        {"dropped_edges", st.feature_edges_dropped},
         {"tets", st.feature_tets}}},
       {"hex_coverage_ceiling", internal::pipeline_coverage_ceiling_json(frames)},
       {"repair", internal::pipeline_repair_json(frames.repair)},

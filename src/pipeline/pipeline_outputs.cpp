@@ -201,16 +201,20 @@ std::string pipeline_summary_text(const Pipeline_tet_mesh& mesh, const Pipeline_
                       : "0.99 out of reach");
     text += buf;
   }
+  // Sharp edges on curves of 1 or 2 edges are not features (Sharp_features_3): say how many.
+  const std::string dropped = st.feature_edges_dropped == 0 ? ""
+                              : "; " + std::to_string(st.feature_edges_dropped) +
+                                    " sharp edges dropped (curves of 1 or 2 edges)";
   std::snprintf(buf, sizeof buf,
                 "  %-32s %.6g (per unit weight %.3g)\n  %-32s mean %.3g, median %.3g\n  %-32s mean %.3g, max %.3g\n"
-                "  %-32s %.3g\n  %-32s %zu edges, %zu corners (%.3g degrees), %zu tetrahedra follow them\n"
+                "  %-32s %.3g\n  %-32s %zu edges, %zu corners (%.3g degrees), %zu tetrahedra follow them%s\n"
                 "  %-32s %zu%s%s%s\n  %-32s %zu (%zu closed), nodes %zu (junctions %zu, boundary ends %zu, interior "
                 "ends %zu)\n  %-32s %zu\n",
                 "smoothness energy", st.smoothness_energy, st.smoothness_energy / st.total_face_weight,
                 "face angle (deg)", angles.mean_deg, angles.median_deg, "boundary alignment error (deg)",
                 st.boundary_error_mean_deg,
                 st.boundary_error_max_deg, "max |F^T g F - I|", st.max_orthonormality_error, "sharp features",
-                st.feature_edges, st.feature_corners, context.options.feature_angle_deg, st.feature_tets,
+                st.feature_edges, st.feature_corners, context.options.feature_angle_deg, st.feature_tets, dropped.c_str(),
                 "singular edges", frames.singular_edges.size(), types.empty() ? "" : " (", types.c_str(),
                 types.empty() ? "" : ")", "singular curves", graph.curves.size(), graph.closed_curves,
                 graph.nodes.size(), graph.junctions, graph.boundary_ends, graph.interior_ends,

@@ -353,6 +353,7 @@ private:
     stats.feature_edges = features.feature_edges().size();
     stats.feature_curve_vertices = features.number_of_curve_vertices();
     stats.feature_corners = features.number_of_corners();
+    stats.feature_edges_dropped = features.number_of_dropped_edges();
     stats.boundary_smooth_turning = features.smooth_turning();
     feature_kind = features.kinds();
     stats.feature_tets = 0;
