@@ -125,5 +125,5 @@ static int run(int argc, char** argv) {
 }
 
 int main(int argc, char** argv) {
-  return benchmark_meshes::run_reporting_errors("benchmark_frame_field", [&] { return run(argc, argv); });
+  return benchmark_support::run_reporting_errors("benchmark_frame_field", [&] { return run(argc, argv); });
 }

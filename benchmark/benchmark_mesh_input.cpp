@@ -69,7 +69,7 @@ static int run(int argc, char** argv) {
     tets = std::move(mesh.tetrahedra);
     name = argv[1];
   } else {
-    benchmark_meshes::kuhn_grid(n, 0, 1, points, tets, jitter);
+    benchmark_support::kuhn_grid(n, 0, 1, points, tets, jitter);
     char text[64];
     std::snprintf(text, sizeof text, "Kuhn grid %d^3, jitter %g", n, jitter);
     name = text;
@@ -121,5 +121,5 @@ static int run(int argc, char** argv) {
 }
 
 int main(int argc, char** argv) {
-  return benchmark_meshes::run_reporting_errors("benchmark_mesh_input", [&] { return run(argc, argv); });
+  return benchmark_support::run_reporting_errors("benchmark_mesh_input", [&] { return run(argc, argv); });
 }

@@ -119,7 +119,7 @@ void compare_metric_storage(int n, std::size_t npairs, unsigned seed) {
   using Map_field = CGAL_ext::Property_map_metric_field_3<Tr, Array_map>;
   std::vector<std::array<double, 3>> points;
   std::vector<std::array<std::size_t, 4>> tets;
-  benchmark_meshes::kuhn_grid(n, -0.5, 1.5 / n, points, tets);
+  benchmark_support::kuhn_grid(n, -0.5, 1.5 / n, points, tets);
   Tr tr;
   CGAL_ext::build_triangulation_from_tets(points, tets, {}, tr);
   std::vector<Eigen::Matrix3d> g(points.size()), A(points.size());
@@ -179,7 +179,7 @@ int main(int argc, char** argv) {
     const bool rough = run_index == 2;
     std::vector<std::array<double, 3>> points;
     std::vector<std::array<std::size_t, 4>> tets;
-    benchmark_meshes::kuhn_grid(n, -0.5, 1.5 / n, points, tets);
+    benchmark_support::kuhn_grid(n, -0.5, 1.5 / n, points, tets);
     Tr tr;
     const auto t0 = std::chrono::steady_clock::now();
     CGAL_ext::build_triangulation_from_tets(points, tets, {}, tr);

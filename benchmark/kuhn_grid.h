@@ -13,7 +13,7 @@
 #include <random>
 #include <vector>
 
-namespace benchmark_meshes {
+namespace benchmark_support {
 
 /// Appends the grid's (n+1)^3 vertices and 6 n^3 tetrahedra; interior
 /// vertices are moved by up to `jitter` (in units of h) in each coordinate,
@@ -42,6 +42,6 @@ inline void kuhn_grid(int n, double lo, double h, std::vector<std::array<double,
   }
 }
 
-} // namespace benchmark_meshes
+} // namespace benchmark_support
 
 #endif // CGAL_EXT_BENCHMARK_KUHN_GRID_H

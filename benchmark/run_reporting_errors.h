@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <exception>
 
-namespace benchmark_meshes {
+namespace benchmark_support {
 
 /// Runs `body` and returns its exit code, or prints `name: what` and
 /// returns 1 if it throws.
@@ -24,6 +24,6 @@ int run_reporting_errors(const char* name, Body body) {
   }
 }
 
-} // namespace benchmark_meshes
+} // namespace benchmark_support
 
 #endif // CGAL_EXT_BENCHMARK_RUN_REPORTING_ERRORS_H

@@ -292,10 +292,10 @@ private:
   // 20) and those with a free end that hang from a junction of curves (a
   // spur: where a coarsely meshed fillet meets a crease, a facet pair just
   // beyond the angle, e.g. Gmsh's anchor at a uniform size) are dropped,
-  // until none is left (dropping two spurs of a junction can leave a third):
-  // every tetrahedron around their ends would take a corner's frame that
-  // fits none of the surface. Edges where parts of the domain meet are
-  // always kept.
+  // until none is left (dropping two spurs of a junction can turn its third
+  // curve into a spur): every tetrahedron around their ends would take a
+  // corner's frame that fits none of the surface. Edges where parts of the
+  // domain meet are always kept.
   void drop_short_curves() {
     const std::size_t nv = vertices_.size();
     std::vector<std::size_t> parent(nv), size(nv);
