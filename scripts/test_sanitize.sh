@@ -27,6 +27,11 @@ excluded+='|reference: reversal symmetry|from 1e-300 I to 1e300 I'
 # blobby, 280 s here against 2.5 s in the normal build); the repair's own
 # further-rounds test runs here.
 excluded+="|--repair-rounds reaches the repair"
+# And, for CI time (80 s of tests here): the CLI's straightening
+# (the library's straightening tests run here), the repair at two thread
+# counts (the restarts' thread-count test runs here), and the install-tree
+# consumer (a CMake packaging check, which the normal build runs).
+excluded+="|generate straightens the singular curves|the repair does not depend on the thread count|install_tree_consumer"
 ctest --test-dir build-sanitize --output-on-failure --timeout 900 -j2 -E "$excluded"
 echo "[sanitize] build and tests: $(( $(date +%s) - start )) s" >&2
 # A fixed seed: the same run on every machine.
