@@ -481,6 +481,28 @@ TEST_CASE("generate meshes a built-in shape with Mesh_3", "[cli][generate]") {
   }
 }
 
+TEST_CASE("generate meshes no coarser than the hex size: Mesh_3's automatic size is capped by --hex-size",
+          "[cli][generate]") {
+  // The built-in cube [-1, 1]^3: the automatic size is its diagonal / 20, 0.173205.
+  auto mesh_3_line = [](const Run& r) {
+    const std::size_t at = r.err.find("[stage] Mesh_3");
+    return at == std::string::npos ? std::string() : r.err.substr(at, r.err.find('\n', at) - at);
+  };
+  const Run coarse = run("generate builtin:cube --hex-size 0.4 --no-repair -o " + (work / "cap_coarse").string());
+  INFO(coarse.err);
+  REQUIRE(coarse.exit_code == 0);
+  CHECK(mesh_3_line(coarse).find("size 0.173205,") != std::string::npos);
+  const Run fine = run("generate builtin:cube --hex-size 0.15 --no-repair -o " + (work / "cap_fine").string());
+  INFO(fine.err);
+  REQUIRE(fine.exit_code == 0);
+  CHECK(mesh_3_line(fine).find("size 0.15,") != std::string::npos);
+  CHECK(number(read_report(work / "cap_fine"), "/tets") > 1.3 * number(read_report(work / "cap_coarse"), "/tets"));
+  // A given --size is used as it is.
+  const Run given = run("generate builtin:cube --hex-size 0.15 --size 0.5 --no-repair -o " + (work / "cap_given").string());
+  REQUIRE(given.exit_code == 0);
+  CHECK(mesh_3_line(given).find("size 0.5,") != std::string::npos);
+}
+
 TEST_CASE("generate lists the curves from a junction shorter than a hex edge", "[cli][generate]") {
   // The ball at two hex sizes (the same field, identity metric scaled to each): the larger has short curves.
   std::size_t most = 0;

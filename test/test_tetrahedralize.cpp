@@ -356,6 +356,30 @@ TEST_CASE("the automatic size gives a mesh of a sensible size", "[tetrahedralize
   CHECK(report.domain.find("facet distance 0.0173205") != std::string::npos);
   CHECK(m.tetrahedra.size() > 500);
   CHECK(m.tetrahedra.size() < 20000);
+
+  // A cap below the diagonal / 20 is the size; one above it, and a cap
+  // with a size given, change nothing.
+  Tetrahedralize_options capped;
+  capped.max_automatic_size = 0.25;
+  Tetrahedralize_report coarse;
+  CHECK(same(CGAL_ext::tetrahedralize_surface(path, capped, &coarse), m));
+  CHECK(coarse.size == report.size);
+  capped.max_automatic_size = 0.1;
+  Tetrahedralize_report fine;
+  const Medit_mesh finer = CGAL_ext::tetrahedralize_surface(path, capped, &fine);
+  check_mesh(finer);
+  CHECK(fine.size == 0.1);
+  CHECK(fine.domain.find("size 0.1,") != std::string::npos);
+  CHECK(finer.tetrahedra.size() > 2 * m.tetrahedra.size()); // (0.173 / 0.1)^3 = 5.2 times the density
+  capped.size = 0.3;
+  Tetrahedralize_report given;
+  CGAL_ext::tetrahedralize_surface(path, capped, &given);
+  CHECK(given.size == 0.3);
+  // The memory refusal says where a capped size came from.
+  capped.size = 0;
+  capped.max_automatic_size = 1e-4;
+  expect_error([&] { CGAL_ext::tetrahedralize_surface(path, capped); },
+               {path, "the size 0.0001 (automatic: the diagonal / 20 capped at 0.0001) is too small"});
 }
 
 TEST_CASE("STL, inside-out and quadrilateral inputs are meshed and their repairs reported", "[tetrahedralize]") {
@@ -460,6 +484,13 @@ TEST_CASE("bad input: a clear Input_error", "[tetrahedralize][errors]") {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
 
+  SECTION("a cap of the automatic size that is negative or not finite") {
+    for (double cap : {-1.0, nan, inf}) {
+      Tetrahedralize_options o;
+      o.max_automatic_size = cap;
+      expect_error([&] { tetrahedralize_builtin("ball", o); }, {"the cap of the automatic size must be positive"});
+    }
+  }
   SECTION("missing file") {
     const std::string path = (scratch() / "no_such_file.off").string();
     expect_error([&] { tetrahedralize_surface(path); }, {path, "cannot open"});

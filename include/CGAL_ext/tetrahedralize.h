@@ -33,6 +33,11 @@ struct Tetrahedralize_options {
   /// edges, `edge_size`); 0 means automatic: the diagonal of the bounding
   /// box of the domain divided by 20. Must be finite and not negative.
   double size = 0;
+  /// Caps the automatic `size` (used when `size` is 0): the diagonal / 20
+  /// or this, the smaller; 0 means no cap. Must be finite and not negative.
+  /// `metric-frames generate` sets it to the hex size (`--hex-size`), so
+  /// that the tetrahedra are no coarser than the hexahedra asked for.
+  double max_automatic_size = 0;
   /// The bound on the distance between the boundary facets and the input
   /// surface (Mesh_3's `facet_distance`); 0 means automatic: `size / 10`.
   /// Must be finite and not negative.

@@ -72,6 +72,9 @@ Generate_plan plan_generate(const Generate_request& r) {
   plan.options = r.options;
   plan.options.hard_boundary = !r.soft_boundary;
   if (r.size) plan.mesh_options.size = *r.size;
+  // Tetrahedra no coarser than the hexahedra asked for: a field, and the
+  // integer-grid map on it, resolve nothing finer than a tetrahedron.
+  if (r.hex_size) plan.mesh_options.max_automatic_size = *r.hex_size;
   plan.mesh_options.sharp_features = !r.smooth_surface;
   if (r.max_memory) plan.mesh_options.memory_limit = *r.max_memory > 0 ? *r.max_memory * 1e9 : -1; // 0: no limit
   plan.mesh_options.sharp_angle_deg = r.options.feature_angle_deg; // the mesh keeps the creases the frames follow

@@ -284,7 +284,7 @@ CLI::App* add_generate(CLI::App& app, Generate_request& r) {
       ->check(positive_finite);
   sub.add_option("--size", r.size,
                  "Mesh_3 size for surface and builtin inputs: it bounds the tetrahedra's circumradii; edges come out "
-                 "about 1.2-1.35 h (default: bounding-box diagonal / 20)")
+                 "about 1.2-1.35 h (default: bounding-box diagonal / 20, or the --hex-size if smaller)")
       ->type_name("h")
       ->check(positive_finite);
   sub.add_option("--max-memory", r.max_memory,

@@ -130,8 +130,14 @@ Sizes resolve_sizes(const Tetrahedralize_options& o, double bbox_diagonal, doubl
   if (!(o.sharp_angle_deg > 0 && o.sharp_angle_deg <= 180))
     throw Input_error(file, 0, element,
                       "the sharp-edge angle must be in (0, 180] degrees (got " + number(o.sharp_angle_deg) + ")");
+  if (!std::isfinite(o.max_automatic_size) || o.max_automatic_size < 0)
+    throw Input_error(file, 0, element,
+                      "the cap of the automatic size must be positive and finite, or 0 for none (got " +
+                          number(o.max_automatic_size) + ")");
   Sizes s;
   s.size = o.size > 0 ? o.size : bbox_diagonal / 20;
+  const bool capped = o.size == 0 && o.max_automatic_size > 0 && o.max_automatic_size < s.size;
+  if (capped) s.size = o.max_automatic_size;
   s.facet_distance = o.facet_distance > 0 ? o.facet_distance : s.size / 10;
   if (!(s.size > 0) || !std::isfinite(s.size))
     throw Input_error(file, 0, element, "the domain is degenerate: its bounding box has no extent");
@@ -143,7 +149,10 @@ Sizes resolve_sizes(const Tetrahedralize_options& o, double bbox_diagonal, doubl
   // (a limit of 0 where the machine's memory is unknown: no limit)
   if (limit > 0 && !(bytes <= limit))
     throw Input_error(file, 0, element,
-                      "the size " + number(s.size) + " is too small for this domain: about " + number(estimate) +
+                      "the size " + number(s.size) +
+                          (capped ? " (automatic: the diagonal / 20 capped at " + number(o.max_automatic_size) + ")"
+                                  : std::string()) +
+                          " is too small for this domain: about " + number(estimate) +
                           " tetrahedra would be made, needing about " + number(bytes / 1e9) + " GB, more than " +
                           (o.memory_limit > 0 ? "the memory limit of " : "the memory of this machine, ") +
                           number(limit / 1e9) + " GB (give a larger size, or a larger memory limit to go on)");
