@@ -481,7 +481,7 @@ TEST_CASE("generate meshes a built-in shape with Mesh_3", "[cli][generate]") {
   }
 }
 
-TEST_CASE("generate meshes no coarser than the hex size: Mesh_3's automatic size is capped by --hex-size",
+TEST_CASE("generate meshes at the hex size or finer: Mesh_3's automatic size is capped by --hex-size",
           "[cli][generate]") {
   // The built-in cube [-1, 1]^3: the automatic size is its diagonal / 20, 0.173205.
   auto mesh_3_line = [](const Run& r) {

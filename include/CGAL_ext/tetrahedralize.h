@@ -36,7 +36,8 @@ struct Tetrahedralize_options {
   /// Caps the automatic `size` (used when `size` is 0): the diagonal / 20
   /// or this, the smaller; 0 means no cap. Must be finite and not negative.
   /// `metric-frames generate` sets it to the hex size (`--hex-size`), so
-  /// that the tetrahedra are no coarser than the hexahedra asked for.
+  /// that the tetrahedra are about as large as the hexahedra asked for, or
+  /// smaller.
   double max_automatic_size = 0;
   /// The bound on the distance between the boundary facets and the input
   /// surface (Mesh_3's `facet_distance`); 0 means automatic: `size / 10`.

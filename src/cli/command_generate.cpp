@@ -72,7 +72,7 @@ Generate_plan plan_generate(const Generate_request& r) {
   plan.options = r.options;
   plan.options.hard_boundary = !r.soft_boundary;
   if (r.size) plan.mesh_options.size = *r.size;
-  // Tetrahedra no coarser than the hexahedra asked for: a field, and the
+  // Tetrahedra about the hexahedra's size or smaller: a field, and the
   // integer-grid map on it, resolve nothing finer than a tetrahedron.
   if (r.hex_size) plan.mesh_options.max_automatic_size = *r.hex_size;
   plan.mesh_options.sharp_features = !r.smooth_surface;
