@@ -496,11 +496,13 @@ TEST_CASE("generate meshes at the hex size or finer: Mesh_3's automatic size is 
   INFO(fine.err);
   REQUIRE(fine.exit_code == 0);
   CHECK(mesh_3_line(fine).find("size 0.15,") != std::string::npos);
+  CHECK(fine.err.find("[note]") == std::string::npos);
   CHECK(number(read_report(work / "cap_fine"), "/tets") > 1.3 * number(read_report(work / "cap_coarse"), "/tets"));
-  // A given --size is used as it is.
+  // A given --size is used as it is, with a note when it is coarser than the hexes.
   const Run given = run("generate builtin:cube --hex-size 0.15 --size 0.5 --no-repair -o " + (work / "cap_given").string());
   REQUIRE(given.exit_code == 0);
   CHECK(mesh_3_line(given).find("size 0.5,") != std::string::npos);
+  CHECK(given.err.find("[note] --size 0.5 is larger than --hex-size 0.15") != std::string::npos);
 }
 
 TEST_CASE("generate lists the curves from a junction shorter than a hex edge", "[cli][generate]") {

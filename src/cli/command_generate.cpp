@@ -117,6 +117,12 @@ int run_generate(const Generate_request& r) {
   if (r.sol_path) inputs.push_back(*r.sol_path);
   check_pipeline_output_directory(r.out_dir, inputs, r.force); // before the computation, which can take long
 
+  if (r.size && r.hex_size && *r.size > *r.hex_size)
+    std::fprintf(stderr,
+                 "[note] --size %.6g is larger than --hex-size %.6g: the tetrahedra will be coarser than the "
+                 "hexahedra, and the field resolves nothing finer than a tetrahedron (without --size, Mesh_3 "
+                 "meshes at the hex size)\n",
+                 *r.size, *r.hex_size);
   Stage_timer timer;
   Pipeline_report_context context;
   context.input = r.input;
