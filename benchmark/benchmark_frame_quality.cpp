@@ -51,7 +51,8 @@
 // fandisk, anchor, joint, rotor and elephant from the directory
 // $CGAL_DATA_MESHES if it is set (see doc/benchmarks.md for unpacking
 // Debian's libcgal-demo data). size_fraction: Mesh_3 size as a fraction of
-// the bounding-box diagonal (default 1/20, generate's default).
+// the bounding-box diagonal (default 1/20, or hex_fraction if smaller, as
+// generate caps its automatic size by the hex size).
 #include <CGAL_ext/Frame_field_3.h>
 #include <CGAL_ext/Frame_field_matchings_3.h>
 #include <CGAL_ext/Frame_field_repair_3.h>
@@ -494,7 +495,8 @@ int main(int argc, char** argv) {
   for (const std::string& input : inputs) {
     const std::string name = input.rfind("builtin:", 0) == 0 ? input : std::filesystem::path(input).filename().string();
     try {
-      benchmark_model(input, name, size_fraction, tools, diffusion_steps);
+      benchmark_model(input, name, size_fraction > 0 ? size_fraction : tools.fraction < 1.0 / 20 ? tools.fraction : 0,
+                      tools, diffusion_steps);
     } catch (const std::exception& e) {
       std::printf("%-22s error: %s\n", name.c_str(), e.what());
       ++failures;

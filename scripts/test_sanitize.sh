@@ -18,8 +18,8 @@ export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
 # each, 650 s in all): the normal build runs them in full, and the tests
 # kept here (one walk-vs-reference family at extreme scales, the walk's
 # degenerate-segment, batch and property tests, the transport's reversal,
-# composition and analytic tests, the frame field, the readers, the CLI and
-# the install-tree consumer) run the same code.
+# composition and analytic tests, the frame field, the readers and the CLI)
+# run the same code.
 excluded='walk vs reference: (nearly degenerate|rounded segments|Delaunay of cospherical|non-convex and non-manifold|Kuhn grids|near-degenerate|jittered grids|CGAL Delaunay)'
 excluded+='|the tolerance is honoured|Magnus needs far fewer|the coarse level of the initialisation'
 excluded+='|reference: reversal symmetry|from 1e-300 I to 1e300 I'

@@ -484,25 +484,28 @@ TEST_CASE("generate meshes a built-in shape with Mesh_3", "[cli][generate]") {
 TEST_CASE("generate meshes at the hex size or finer: Mesh_3's automatic size is capped by --hex-size",
           "[cli][generate]") {
   // The built-in cube [-1, 1]^3: the automatic size is its diagonal / 20, 0.173205.
-  auto mesh_3_line = [](const Run& r) {
+  // Each run: its stderr, and Mesh_3's stage line.
+  auto cube = [](const std::string& options, const std::string& dir) {
+    const Run r = run("generate builtin:cube " + options + " --no-repair -o " + (work / dir).string());
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
     const std::size_t at = r.err.find("[stage] Mesh_3");
-    return at == std::string::npos ? std::string() : r.err.substr(at, r.err.find('\n', at) - at);
+    REQUIRE(at != std::string::npos);
+    return std::make_pair(r.err, r.err.substr(at, r.err.find('\n', at) - at));
   };
-  const Run coarse = run("generate builtin:cube --hex-size 0.4 --no-repair -o " + (work / "cap_coarse").string());
-  INFO(coarse.err);
-  REQUIRE(coarse.exit_code == 0);
-  CHECK(mesh_3_line(coarse).find("size 0.173205,") != std::string::npos);
-  const Run fine = run("generate builtin:cube --hex-size 0.15 --no-repair -o " + (work / "cap_fine").string());
-  INFO(fine.err);
-  REQUIRE(fine.exit_code == 0);
-  CHECK(mesh_3_line(fine).find("size 0.15,") != std::string::npos);
-  CHECK(fine.err.find("[note]") == std::string::npos);
+  CHECK(cube("--hex-size 0.4", "cap_coarse").second.find("size 0.173205,") != std::string::npos);
+  CHECK(cube("--hex-size 0.15", "cap_fine").second.find("size 0.15,") != std::string::npos);
   CHECK(number(read_report(work / "cap_fine"), "/tets") > 1.3 * number(read_report(work / "cap_coarse"), "/tets"));
-  // A given --size is used as it is, with a note when it is coarser than the hexes.
-  const Run given = run("generate builtin:cube --hex-size 0.15 --size 0.5 --no-repair -o " + (work / "cap_given").string());
-  REQUIRE(given.exit_code == 0);
-  CHECK(mesh_3_line(given).find("size 0.5,") != std::string::npos);
-  CHECK(given.err.find("[note] --size 0.5 is larger than --hex-size 0.15") != std::string::npos);
+  // A constant metric asking for hexes of 0.3 / sqrt(4) along y: the cap is that edge.
+  CHECK(cube("--hex-size 0.3 --metric-const '1 0 4 0 0 1'", "cap_metric").second.find("size 0.15,") !=
+        std::string::npos);
+  // A given --size is used as it is, with a note when it is larger than the hex edge, none when smaller.
+  const auto [given, given_line] = cube("--hex-size 0.15 --size 0.5", "cap_given");
+  CHECK(given_line.find("size 0.5,") != std::string::npos);
+  CHECK(given.find("[note] --size 0.5 is larger than the hex edge 0.15") != std::string::npos);
+  const auto [smaller, smaller_line] = cube("--hex-size 0.15 --size 0.14", "cap_smaller");
+  CHECK(smaller_line.find("size 0.14,") != std::string::npos);
+  CHECK(smaller.find("[note] --size") == std::string::npos);
 }
 
 TEST_CASE("generate lists the curves from a junction shorter than a hex edge", "[cli][generate]") {

@@ -378,8 +378,10 @@ TEST_CASE("the automatic size gives a mesh of a sensible size", "[tetrahedralize
   // The memory refusal says where a capped size came from.
   capped.size = 0;
   capped.max_automatic_size = 1e-4;
+  capped.memory_limit = 1e9;
   expect_error([&] { CGAL_ext::tetrahedralize_surface(path, capped); },
-               {path, "the size 0.0001 (automatic: the diagonal / 20 capped at 0.0001) is too small"});
+               {path, "the size 0.0001 (automatic: the diagonal / 20 capped at 0.0001) is too small",
+                "give a larger size or cap"});
 }
 
 TEST_CASE("STL, inside-out and quadrilateral inputs are meshed and their repairs reported", "[tetrahedralize]") {

@@ -31,13 +31,15 @@ namespace CGAL_ext {
 struct Tetrahedralize_options {
   /// The target size (Mesh_3's `cell_size`, `facet_size` and, on sharp
   /// edges, `edge_size`); 0 means automatic: the diagonal of the bounding
-  /// box of the domain divided by 20. Must be finite and not negative.
+  /// box of the domain divided by 20, capped by `max_automatic_size`. Must
+  /// be finite and not negative.
   double size = 0;
   /// Caps the automatic `size` (used when `size` is 0): the diagonal / 20
   /// or this, the smaller; 0 means no cap. Must be finite and not negative.
-  /// `metric-frames generate` sets it to the hex size (`--hex-size`), so
-  /// that the tetrahedra are about as large as the hexahedra asked for, or
-  /// smaller.
+  /// `metric-frames generate` sets it to the smallest hex edge that
+  /// `--hex-size` asks for (h, or h / sqrt of the largest eigenvalue of a
+  /// constant metric), so that the tetrahedra are about as large as the
+  /// hexahedra, or smaller.
   double max_automatic_size = 0;
   /// The bound on the distance between the boundary facets and the input
   /// surface (Mesh_3's `facet_distance`); 0 means automatic: `size / 10`.

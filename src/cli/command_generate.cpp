@@ -17,7 +17,10 @@
 
 #include <CGAL/Real_timer.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -72,9 +75,6 @@ Generate_plan plan_generate(const Generate_request& r) {
   plan.options = r.options;
   plan.options.hard_boundary = !r.soft_boundary;
   if (r.size) plan.mesh_options.size = *r.size;
-  // Tetrahedra about the hexahedra's size or smaller: a field, and the
-  // integer-grid map on it, resolve nothing finer than a tetrahedron.
-  if (r.hex_size) plan.mesh_options.max_automatic_size = *r.hex_size;
   plan.mesh_options.sharp_features = !r.smooth_surface;
   if (r.max_memory) plan.mesh_options.memory_limit = *r.max_memory > 0 ? *r.max_memory * 1e9 : -1; // 0: no limit
   plan.mesh_options.sharp_angle_deg = r.options.feature_angle_deg; // the mesh keeps the creases the frames follow
@@ -85,6 +85,21 @@ Generate_plan plan_generate(const Generate_request& r) {
   if (r.metric_expr)
     plan.formula = std::make_unique<Metric_expression>(*r.metric_expr, Metric_expression::Kind::tensor, "--metric-expr");
   if (r.metric_const) plan.constant_metric = parse_constant_metric(*r.metric_const);
+  // Tetrahedra about the size of the smallest hex edge or smaller: a field,
+  // and the integer-grid map on it, resolve nothing finer than a
+  // tetrahedron. That edge is h / sqrt(largest eigenvalue) for a constant
+  // metric, h for a formula (whose sizes vary: --size meshes finer).
+  if (r.hex_size) {
+    double cap = *r.hex_size;
+    if (plan.constant_metric) {
+      const double largest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(*plan.constant_metric,
+                                                                            Eigen::EigenvaluesOnly)
+                                 .eigenvalues()
+                                 .maxCoeff();
+      if (largest > 0 && std::isfinite(cap / std::sqrt(largest))) cap /= std::sqrt(largest); // else refused later
+    }
+    plan.mesh_options.max_automatic_size = cap;
+  }
   return plan;
 }
 
@@ -117,12 +132,12 @@ int run_generate(const Generate_request& r) {
   if (r.sol_path) inputs.push_back(*r.sol_path);
   check_pipeline_output_directory(r.out_dir, inputs, r.force); // before the computation, which can take long
 
-  if (r.size && r.hex_size && *r.size > *r.hex_size)
+  if (r.size && plan.mesh_options.max_automatic_size > 0 && *r.size > plan.mesh_options.max_automatic_size)
     std::fprintf(stderr,
-                 "[note] --size %.6g is larger than --hex-size %.6g: the tetrahedra will be coarser than the "
-                 "hexahedra, and the field resolves nothing finer than a tetrahedron (without --size, Mesh_3 "
-                 "meshes at the hex size)\n",
-                 *r.size, *r.hex_size);
+                 "[note] --size %.6g is larger than the hex edge %.6g (--hex-size and the metric): the tetrahedra "
+                 "will be coarser than the hexahedra, and the field resolves nothing finer than a tetrahedron "
+                 "(without --size, Mesh_3 meshes at the hex edge or finer)\n",
+                 *r.size, plan.mesh_options.max_automatic_size);
   Stage_timer timer;
   Pipeline_report_context context;
   context.input = r.input;

@@ -284,11 +284,11 @@ CLI::App* add_generate(CLI::App& app, Generate_request& r) {
       ->check(positive_finite);
   sub.add_option("--size", r.size,
                  "Mesh_3 size for surface and builtin inputs: it bounds the tetrahedra's circumradii; edges come out "
-                 "about 1.2-1.35 h (default: bounding-box diagonal / 20, or the --hex-size if smaller)")
+                 "about 1.2-1.35 h (default: bounding-box diagonal / 20, or the hex edge that --hex-size asks for if smaller)")
       ->type_name("h")
       ->check(positive_finite);
   sub.add_option("--max-memory", r.max_memory,
-                 "refuse a --size whose estimated mesh would need more (about 5 tets per size^3 of volume, 1.6 KB "
+                 "refuse a --size (or the hex edge it defaults to) whose estimated mesh would need more (about 5 tets per size^3 of volume, 1.6 KB "
                  "each), and stop Mesh_3 where its mesh reaches that (default: this machine's memory; 0: no limit)")
       ->type_name("GB")
       ->check(non_negative_finite);

@@ -136,11 +136,11 @@ Sizes resolve_sizes(const Tetrahedralize_options& o, double bbox_diagonal, doubl
                           number(o.max_automatic_size) + ")");
   Sizes s;
   s.size = o.size > 0 ? o.size : bbox_diagonal / 20;
+  if (!(s.size > 0) || !std::isfinite(s.size)) // (before the cap, which would hide it)
+    throw Input_error(file, 0, element, "the domain is degenerate: its bounding box has no extent");
   const bool capped = o.size == 0 && o.max_automatic_size > 0 && o.max_automatic_size < s.size;
   if (capped) s.size = o.max_automatic_size;
   s.facet_distance = o.facet_distance > 0 ? o.facet_distance : s.size / 10;
-  if (!(s.size > 0) || !std::isfinite(s.size))
-    throw Input_error(file, 0, element, "the domain is degenerate: its bounding box has no extent");
   if (!std::isfinite(o.memory_limit))
     throw Input_error(file, 0, element, "the memory limit must be finite (got " + number(o.memory_limit) + ")");
   const double estimate = tetrahedra_per_unit_volume * volume / (s.size * s.size * s.size);
@@ -155,7 +155,8 @@ Sizes resolve_sizes(const Tetrahedralize_options& o, double bbox_diagonal, doubl
                           " is too small for this domain: about " + number(estimate) +
                           " tetrahedra would be made, needing about " + number(bytes / 1e9) + " GB, more than " +
                           (o.memory_limit > 0 ? "the memory limit of " : "the memory of this machine, ") +
-                          number(limit / 1e9) + " GB (give a larger size, or a larger memory limit to go on)");
+                          number(limit / 1e9) + " GB (give a larger size" + (capped ? " or cap" : "") +
+                          ", or a larger memory limit to go on)");
   s.estimated_tets = estimate;
   s.memory_limit = limit > 0 ? limit : HUGE_VAL;
   return s;
