@@ -91,13 +91,10 @@ Generate_plan plan_generate(const Generate_request& r) {
   // metric, h for a formula (whose sizes vary: --size meshes finer).
   if (r.hex_size) {
     double cap = *r.hex_size;
-    if (plan.constant_metric) {
-      const double largest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(*plan.constant_metric,
-                                                                            Eigen::EigenvaluesOnly)
-                                 .eigenvalues()
-                                 .maxCoeff();
-      if (largest > 0 && std::isfinite(cap / std::sqrt(largest))) cap /= std::sqrt(largest); // else refused later
-    }
+    if (plan.constant_metric) // valid: parse_constant_metric() checked it
+      cap /= std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(*plan.constant_metric, Eigen::EigenvaluesOnly)
+                           .eigenvalues()
+                           .maxCoeff());
     plan.mesh_options.max_automatic_size = cap;
   }
   return plan;
