@@ -19,6 +19,7 @@
 #include <CGAL_ext/IO/Medit_sol.h>
 #include <CGAL_ext/IO/Medit_mesh.h>
 #include <CGAL_ext/IO/Perm_file.h>
+#include <CGAL_ext/make_kuhn_grid.h>
 
 #include <unistd.h>
 
@@ -508,6 +509,39 @@ TEST_CASE("generate meshes at the hex size or finer: Mesh_3's automatic size is 
   CHECK(smaller.find("[note] --size") == std::string::npos);
 }
 
+TEST_CASE("generate warns before the long stages when much of the domain is thinner than a hex edge",
+          "[cli][generate]") {
+  // A slab [0, 1]^2 x [0, 0.125]: its faces (area 2) are 0.125 thick, its sides (area 0.5) 1 wide.
+  const std::string slab = (work / "slab.mesh").string();
+  std::filesystem::create_directories(work);
+  CGAL_ext::IO::write_medit_mesh(slab, CGAL_ext::make_kuhn_grid({8, 8, 1}, 0.125));
+  auto generate = [&](const std::string& hex_size, const std::string& dir) {
+    const Run r = run("generate " + slab + " --hex-size " + hex_size + " --no-repair -o " + (work / dir).string());
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    return r.err;
+  };
+  // Hexes of 0.25: the faces are half a hex edge thick, 80% of the boundary
+  // by area; 10% of it is under 0.5 hex edges, so hexes of 0.125 leave 10%.
+  const std::string thin = generate("0.25", "slab_thin");
+  const std::size_t warning = thin.find("[warning] 80% of the boundary is less than one hex edge (0.25) from the opposite side");
+  CHECK(warning != std::string::npos);
+  CHECK(thin.find("meshable. With --hex-size 0.125, 10% of it would be.") != std::string::npos);
+  CHECK(warning < thin.find("[stage] refinement")); // before the long stages
+  CHECK(thin.find("thin parts                       80.0% of the boundary under one hex edge") != std::string::npos);
+  const nlohmann::json report = read_report(work / "slab_thin");
+  CHECK(number(report, "/thickness/facets") == 2 * 128 + 4 * 16);
+  CHECK(number(report, "/thickness/cap_hex_edges") == 4);
+  CHECK(number(report, "/thickness/fraction_below_one_hex_edge") == Approx(0.8).epsilon(1e-12));
+  CHECK(number(report, "/thickness/thickness_at_10_percent_hex_edges") == Approx(0.5).epsilon(1e-12));
+  // Hexes of 0.1: the faces are 1.25 hex edges thick, and nothing is said.
+  const std::string thick = generate("0.1", "slab_thick");
+  CHECK(thick.find("[warning]") == std::string::npos);
+  CHECK(thick.find("0.0% of the boundary under one hex edge from the opposite side; 10% under 1.25 hex edges") !=
+        std::string::npos);
+  CHECK(number(read_report(work / "slab_thick"), "/thickness/fraction_below_one_hex_edge") == 0);
+}
+
 TEST_CASE("generate lists the curves from a junction shorter than a hex edge", "[cli][generate]") {
   // The ball at two hex sizes (the same field, identity metric scaled to each): the larger has short curves.
   std::size_t most = 0;
@@ -919,6 +953,7 @@ TEST_CASE("the pipeline's library functions write the files of generate, bit for
   input.source = input.name = sol;
   input.hex_size = 0.5;
   const CGAL_ext::Pipeline_metric metric = CGAL_ext::make_pipeline_metric(mesh, input);
+  context.thickness = CGAL_ext::measure_pipeline_thickness(metric);
   const CGAL_ext::Pipeline_frame_field frames =
       CGAL_ext::generate_pipeline_frame_field(metric, context.options, CGAL_ext::Singularity_repair_options(), {},
                                               CGAL_ext::pipeline_straightening_options(mesh));

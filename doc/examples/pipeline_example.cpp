@@ -10,7 +10,8 @@
 // edge 0.25 / (1 + z) along x and z, half that along y (about 400 hexes,
 // coarser than the 1175 tets, as a hex mesh from this tet mesh should be).
 // 1. load_tet_mesh() reads the .mesh (or meshes a surface with Mesh_3).
-// 2. make_pipeline_metric() divides the metric by h^2 and checks it.
+// 2. make_pipeline_metric() divides the metric by h^2 and checks it;
+//    measure_pipeline_thickness() finds the parts thinner than a hex edge.
 // 3. generate_pipeline_frame_field() computes, repairs and classifies, then
 //    straightens the singular curves (pipeline_straightening_options()).
 // 4. write_pipeline_outputs() writes the files; pipeline_report() makes the
@@ -51,6 +52,7 @@ int main(int argc, char** argv) {
   metric.name = "diag(1, 4, 1) (1 + z)^2";
   metric.hex_size = 0.25;
   const CGAL_ext::Pipeline_metric field = CGAL_ext::make_pipeline_metric(mesh, metric, stage);
+  context.thickness = CGAL_ext::measure_pipeline_thickness(field, stage);
 
   CGAL_ext::Frame_field_options options;
   options.progress = stage;

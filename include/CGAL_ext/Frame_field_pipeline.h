@@ -143,6 +143,32 @@ struct Pipeline_metric {
 };
 
 /// \ingroup PkgCGALExtPipeline
+/// How thin the domain is, in hex edges: `Domain_thickness_3` on the
+/// pipeline's metric field, where a hex edge has length 1.
+struct Pipeline_thickness {
+  /// The largest thickness measured, in hex edges: rays stop there.
+  double cap = 0;
+  /// The share of the boundary (by metric area) less than one hex edge from
+  /// the opposite side of the domain, which hexahedra of this size cannot fill.
+  double fraction_below_hex_edge = 0;
+  /// The thickness, in hex edges, under which lies 10% of the boundary (at
+  /// most `cap`): hexahedra that many times as large leave 10% of it thinner
+  /// than one of their edges.
+  double thickness_at_10_percent = 0;
+  /// The number of boundary facets measured.
+  std::size_t facets = 0;
+};
+
+/// \ingroup PkgCGALExtPipeline
+/// Measures how thin the domain of `metric` is, in hex edges
+/// (`Domain_thickness_3` with a cap of 4 hex edges). In the metric's own
+/// unit length if it is not scaled (`Pipeline_metric::scaled`).
+/// \param metric the metric field
+/// \param stage if set, called after the stage `thickness`
+/// \returns the shares of the boundary
+Pipeline_thickness measure_pipeline_thickness(const Pipeline_metric& metric, const Pipeline_stage_callback& stage = {});
+
+/// \ingroup PkgCGALExtPipeline
 /// Makes the metric field of the pipeline on `mesh`: the metric of `input`
 /// divided by h^2, every scaled tensor checked.
 ///
@@ -276,6 +302,8 @@ struct Pipeline_report_context {
   Frame_field_options options;
   /// Seconds per stage, by name.
   std::map<std::string, double> stage_seconds;
+  /// How thin the domain is, if it was measured (`measure_pipeline_thickness()`).
+  std::optional<Pipeline_thickness> thickness;
 };
 
 /// \ingroup PkgCGALExtPipeline

@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 namespace CGAL_ext {
@@ -117,6 +118,15 @@ inline nlohmann::ordered_json pipeline_straightening_json(const Pipeline_frame_f
           {"non_meshable_nodes_after", frames.graph.non_meshable_vertices()}};
 }
 
+// The "thickness" object (in hex edges), or null if it was not measured.
+inline nlohmann::ordered_json pipeline_thickness_json(const std::optional<Pipeline_thickness>& t) {
+  if (!t) return nullptr;
+  return {{"facets", t->facets},
+          {"cap_hex_edges", t->cap},
+          {"fraction_below_one_hex_edge", t->fraction_below_hex_edge},
+          {"thickness_at_10_percent_hex_edges", t->thickness_at_10_percent}};
+}
+
 // The "hex_coverage_ceiling" object: numbers, null where not finite; the
 // factor is left out when every hex size reaches 0.99 (it is +infinity).
 inline nlohmann::ordered_json pipeline_coverage_ceiling_json(const Pipeline_frame_field& frames) {
@@ -184,6 +194,7 @@ inline nlohmann::ordered_json pipeline_report(const Pipeline_tet_mesh& mesh, con
         {"dropped_edges", st.feature_edges_dropped},
         {"tets", st.feature_tets}}},
       {"hex_coverage_ceiling", internal::pipeline_coverage_ceiling_json(frames)},
+      {"thickness", internal::pipeline_thickness_json(context.thickness)},
       {"repair", internal::pipeline_repair_json(frames.repair)},
       {"straightening", internal::pipeline_straightening_json(frames)},
       {"max_transport_angle_deg", st.max_transport_angle * 180 / M_PI},

@@ -153,6 +153,23 @@ int run_generate(const Generate_request& r) {
     std::fprintf(stderr, "[note] %zu vertices are used by no tetrahedron\n", mesh.build.unused_vertices);
 
   const Pipeline_metric field = make_pipeline_metric(mesh, metric_input(r, plan, mesh), stage);
+  // Said before the long stages: parts thinner than a hex edge are a cause of
+  // non-meshable singularities that no optimisation removes.
+  context.thickness = measure_pipeline_thickness(field, stage);
+  if (context.thickness->fraction_below_hex_edge > 0.1) {
+    const double t10 = context.thickness->thickness_at_10_percent;
+    const std::string edge = field.scaled ? " (" + format_number(field.hex_size, 6) + ")" : std::string();
+    const std::string advice =
+        !(t10 > 0)     ? std::string("A smaller hex size would leave less")
+        : field.scaled ? "With --hex-size " + format_number(field.hex_size * t10, 3) + ", 10% of it would be"
+                     : "With hexahedra " + format_number(t10, 3) + " times as large (the metric times " +
+                           format_number(1 / (t10 * t10), 3) + "), 10% of it would be";
+    std::fprintf(stderr,
+                 "[warning] %.0f%% of the boundary is less than one hex edge%s from the opposite side of the domain: "
+                 "hexahedra of this size cannot fill those parts, and the singular curves there are rarely "
+                 "meshable. %s.\n",
+                 100 * context.thickness->fraction_below_hex_edge, edge.c_str(), advice.c_str());
+  }
 
   plan.options.progress = stage;
   // Long iterations report at most once per second.
