@@ -524,9 +524,9 @@ TEST_CASE("generate warns before the long stages when much of the domain is thin
   // Hexes of 0.25: the faces are half a hex edge thick, 80% of the boundary
   // by area; 10% of it is under 0.5 hex edges, so hexes of 0.125 leave 10%.
   const std::string thin = generate("0.25", "slab_thin");
-  const std::size_t warning = thin.find("[warning] 80% of the boundary is less than one hex edge (0.25) from the opposite side");
+  const std::size_t warning = thin.find("[warning] 80% of the boundary is less than one hex edge (h = 0.25) from the opposite side");
   CHECK(warning != std::string::npos);
-  CHECK(thin.find("meshable. With --hex-size 0.125, 10% of it would be.") != std::string::npos);
+  CHECK(thin.find("meshable. With --hex-size 0.125, at most 10% of it would be.") != std::string::npos);
   CHECK(warning < thin.find("[stage] refinement")); // before the long stages
   CHECK(thin.find("thin parts                       80.0% of the boundary under one hex edge") != std::string::npos);
   const nlohmann::json report = read_report(work / "slab_thin");
@@ -534,6 +534,13 @@ TEST_CASE("generate warns before the long stages when much of the domain is thin
   CHECK(number(report, "/thickness/cap_hex_edges") == 4);
   CHECK(number(report, "/thickness/fraction_below_one_hex_edge") == Approx(0.8).epsilon(1e-12));
   CHECK(number(report, "/thickness/thickness_at_10_percent_hex_edges") == Approx(0.5).epsilon(1e-12));
+  // The same hexes from a metric used as it is (16 I: edges of 0.25): the advice scales the metric.
+  const Run unscaled = run("generate " + slab + " --metric-const '16 16 16' --no-repair -o " + (work / "slab_metric").string());
+  INFO(unscaled.err);
+  REQUIRE(unscaled.exit_code == 0);
+  CHECK(unscaled.err.find("[warning] 80% of the boundary is less than one hex edge from the opposite side") != std::string::npos);
+  CHECK(unscaled.err.find("With hexahedra 0.5 times as large (the metric times 4), at most 10% of it would be.") !=
+        std::string::npos);
   // Hexes of 0.1: the faces are 1.25 hex edges thick, and nothing is said.
   const std::string thick = generate("0.1", "slab_thick");
   CHECK(thick.find("[warning]") == std::string::npos);

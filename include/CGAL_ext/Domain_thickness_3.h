@@ -43,10 +43,13 @@ namespace CGAL_ext {
 ///
 /// The rays are walked with `Segment_walk_3` (exact predicates, re-entries
 /// of non-convex domains found), on the domain of the metric field; the
-/// length of each piece is integrated in the metric of its tetrahedron
-/// (Simpson's rule on the linear `A`). A ray that reaches the cap without
-/// leaving the domain counts as the cap. The result does not depend on the
-/// number of threads.
+/// length of each piece is integrated in the metric of a tetrahedron that
+/// holds it (Simpson's rule on the linear `A`: exact where `|A d|` varies
+/// linearly along the piece, as in a constant metric; otherwise its error
+/// falls with the fifth power of the piece's length). A ray is walked in
+/// legs sized from the metric met so far, until it leaves the domain or its
+/// length reaches the cap; one that reaches the cap counts as the cap. The
+/// result does not depend on the number of threads.
 ///
 /// \tparam Metric_field a model of `MetricField_3`, such as `Metric_field_3<Tr>`
 template <class Metric_field>
@@ -78,16 +81,20 @@ public:
     const Triangulation& tr = field.triangulation();
     const auto cim = field.cell_index_map();
     const Walk walk(tr, internal::Domain_predicate_of<typename Metric_field::Cell_index_map>::make(cim));
-    std::vector<Cell_handle> cells;
+    std::vector<Cell_handle> cells, facet_cells;
     for (auto c = tr.finite_cells_begin(); c != tr.finite_cells_end(); ++c)
       if (get(cim, c) >= 0) cells.push_back(c);
     std::sort(cells.begin(), cells.end(), [&](Cell_handle a, Cell_handle b) { return get(cim, a) < get(cim, b); });
     for (Cell_handle c : cells)
       for (int f = 0; f < 4; ++f) {
         const Cell_handle n = c->neighbor(f);
-        if (tr.is_infinite(n) || get(cim, n) < 0) facets_.push_back({std::size_t(get(cim, c)), f, 0, 0});
+        if (tr.is_infinite(n) || get(cim, n) < 0) {
+          facets_.push_back({std::size_t(get(cim, c)), f, 0, 0});
+          facet_cells.push_back(c);
+        }
       }
-    internal::parallel_for_each_index(facets_.size(), [&](std::size_t k) { measure(field, walk, cells, facets_[k]); });
+    internal::parallel_for_each_index(facets_.size(),
+                                      [&](std::size_t k) { measure(field, walk, facet_cells[k], facets_[k]); });
     for (const Facet& f : facets_) total_area_ += f.metric_area;
   }
 
@@ -96,7 +103,7 @@ public:
   const std::vector<Facet>& facets() const { return facets_; }
 
   /// The cap given to the constructor.
-  /// \returns the largest thickness measured
+  /// \returns the cap: no facet's thickness exceeds it
   double max_thickness() const { return max_; }
 
   /// The metric area of the boundary.
@@ -113,9 +120,11 @@ public:
     return total_area_ > 0 ? a / total_area_ : 0;
   }
 
-  /// The thickness below which lies a share `q` of the boundary (by metric
-  /// area): the smallest facet thickness `t` with `area_fraction_below(t)`
-  /// plus that facet's share reaching `q`.
+  /// The thickness under which lies a share `q` of the boundary (by metric
+  /// area): the smallest facet thickness `t` such that the facets of
+  /// thickness at most `t` hold at least `q` of the area. Hexahedra `t`
+  /// times as large as the metric's unit leave at most `q` of the boundary
+  /// thinner than one of their edges.
   /// \param q the share, in [0, 1]
   /// \returns the thickness, at most `max_thickness()`; NaN for an empty
   ///          boundary or a `q` outside [0, 1]
@@ -146,8 +155,7 @@ private:
            6;
   }
 
-  void measure(const Metric_field& field, const Walk& walk, const std::vector<Cell_handle>& cells, Facet& f) const {
-    const Cell_handle c = cells[f.tet];
+  void measure(const Metric_field& field, const Walk& walk, Cell_handle c, Facet& f) const {
     Eigen::Vector3d p[3];
     for (int k = 0, m = 0; k < 4; ++k)
       if (k != f.facet) p[m++] = internal::to_eigen_vector(c->vertex(k)->point());
@@ -162,17 +170,22 @@ private:
     f.metric_area = A.determinant() * (A_inv.transpose() * n).norm() * twice_area / 2;
     const Eigen::Vector3d u = A_inv * (A_inv.transpose() * n); // g^{-1} n
     const Eigen::Vector3d inward = -u / (A * u).norm();        // unit length in the metric at the centroid
-    // Walk on in legs until the ray leaves the domain or the cap is reached;
-    // each leg is as long, in the centroid's metric, as the thickness left.
-    double length = 0;
+    // Walk on in legs until the ray leaves the domain or its length reaches
+    // the cap. Each leg is a quarter longer than the length left needs at
+    // the metric's rate on the last leg (at first, the centroid's), at
+    // most 16 times the last: a metric that shrinks inward (hexes growing)
+    // takes a few more legs, never a length short of the cap. 64 legs
+    // would be a growth of 16^63.
+    double length = 0, leg_length = 1.25 * max_; // in multiples of `inward` (unit length in the centroid's metric)
     bool entered = false;
     Eigen::Vector3d from = centroid;
     Cell_handle hint = c;
     std::vector<Piece> pieces;
-    for (int leg = 0; leg < 64 && length < max_; ++leg) {
-      const Eigen::Vector3d to = from + (max_ - length) * 1.25 * inward;
+    for (int leg = 0; leg < 64; ++leg) {
+      const Eigen::Vector3d to = from + leg_length * inward;
       pieces.clear();
       walk.fast(point(from), point(to), std::back_inserter(pieces), hint);
+      const double before = length;
       for (const Piece& piece : pieces) {
         if (piece.dimension < 0) {
           if (entered) { // left the domain
@@ -182,13 +195,18 @@ private:
           continue; // the centroid rounded to just outside its facet
         }
         entered = true;
+        // A piece along a facet or an edge (dimension < 3) is measured in
+        // one of its cells: A is continuous, so any gives the same up to rounding.
         const Eigen::Vector3d a = from + piece.t_in * (to - from), b = from + piece.t_out * (to - from);
         length += metric_length(field, piece.cell, a, b);
         hint = piece.cell;
       }
+      if (length >= max_ * (1 - 1e-12)) break; // (not a last leg of a few ulps)
+      const double gained = length - before; // over leg_length (> 0: the ray is inside)
+      leg_length = gained > 0 ? std::min(16 * leg_length, 1.25 * (max_ - length) * leg_length / gained) : 16 * leg_length;
       from = to;
     }
-    f.thickness = std::min(length, max_);
+    f.thickness = max_;
   }
 
   double max_;

@@ -152,8 +152,8 @@ struct Pipeline_thickness {
   /// the opposite side of the domain, which hexahedra of this size cannot fill.
   double fraction_below_hex_edge = 0;
   /// The thickness, in hex edges, under which lies 10% of the boundary (at
-  /// most `cap`): hexahedra that many times as large leave 10% of it thinner
-  /// than one of their edges.
+  /// most `cap`; `Domain_thickness_3::area_quantile()`): hexahedra that many
+  /// times as large leave at most 10% of it thinner than one of their edges.
   double thickness_at_10_percent = 0;
   /// The number of boundary facets measured.
   std::size_t facets = 0;

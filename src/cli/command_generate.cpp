@@ -158,12 +158,12 @@ int run_generate(const Generate_request& r) {
   context.thickness = measure_pipeline_thickness(field, stage);
   if (context.thickness->fraction_below_hex_edge > 0.1) {
     const double t10 = context.thickness->thickness_at_10_percent;
-    const std::string edge = field.scaled ? " (" + format_number(field.hex_size, 6) + ")" : std::string();
+    const std::string edge = field.scaled ? " (h = " + format_number(field.hex_size, 6) + ")" : std::string();
     const std::string advice =
         !(t10 > 0)     ? std::string("A smaller hex size would leave less")
-        : field.scaled ? "With --hex-size " + format_number(field.hex_size * t10, 3) + ", 10% of it would be"
+        : field.scaled ? "With --hex-size " + format_number(field.hex_size * t10, 3) + ", at most 10% of it would be"
                      : "With hexahedra " + format_number(t10, 3) + " times as large (the metric times " +
-                           format_number(1 / (t10 * t10), 3) + "), 10% of it would be";
+                           format_number(1 / (t10 * t10), 3) + "), at most 10% of it would be";
     std::fprintf(stderr,
                  "[warning] %.0f%% of the boundary is less than one hex edge%s from the opposite side of the domain: "
                  "hexahedra of this size cannot fill those parts, and the singular curves there are rarely "
