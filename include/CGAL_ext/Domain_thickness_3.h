@@ -82,8 +82,16 @@ public:
     const auto cim = field.cell_index_map();
     const Walk walk(tr, internal::Domain_predicate_of<typename Metric_field::Cell_index_map>::make(cim));
     std::vector<Cell_handle> cells, facet_cells;
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
     for (auto c = tr.finite_cells_begin(); c != tr.finite_cells_end(); ++c)
-      if (get(cim, c) >= 0) cells.push_back(c);
+      if (get(cim, c) >= 0) {
+        cells.push_back(c);
+        for (int v = 0; v < 4; ++v) {
+          const Eigen::Vector3d p = internal::to_eigen_vector(c->vertex(v)->point());
+          lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+        }
+      }
+    diagonal_ = cells.empty() ? 0 : (hi - lo).norm();
     std::sort(cells.begin(), cells.end(), [&](Cell_handle a, Cell_handle b) { return get(cim, a) < get(cim, b); });
     for (Cell_handle c : cells)
       for (int f = 0; f < 4; ++f) {
@@ -175,8 +183,10 @@ private:
     // the metric's rate on the last leg (at first, the centroid's), at
     // most 16 times the last: a metric that shrinks inward (hexes growing)
     // takes a few more legs, never a length short of the cap. 64 legs
-    // would be a growth of 16^63.
-    double length = 0, leg_length = 1.25 * max_; // in multiples of `inward` (unit length in the centroid's metric)
+    // would be a growth of 16^63; no leg is longer than twice the domain's
+    // bounding-box diagonal, which any ray still inside leaves.
+    const double longest = 2 * diagonal_ / inward.norm();
+    double length = 0, leg_length = std::min(1.25 * max_, longest); // in multiples of `inward` (unit length in the centroid's metric)
     bool entered = false;
     Eigen::Vector3d from = centroid;
     Cell_handle hint = c;
@@ -189,7 +199,7 @@ private:
       for (const Piece& piece : pieces) {
         if (piece.dimension < 0) {
           if (entered) { // left the domain
-            f.thickness = std::min(length, max_);
+            f.thickness = length >= max_ * (1 - 1e-12) ? max_ : length;
             return;
           }
           continue; // the centroid rounded to just outside its facet
@@ -201,15 +211,21 @@ private:
         length += metric_length(field, piece.cell, a, b);
         hint = piece.cell;
       }
+      if (!entered) { // only possible for a facet too flat to have an inside: nothing behind it
+        f.thickness = 0;
+        return;
+      }
       if (length >= max_ * (1 - 1e-12)) break; // (not a last leg of a few ulps)
-      const double gained = length - before; // over leg_length (> 0: the ray is inside)
-      leg_length = gained > 0 ? std::min(16 * leg_length, 1.25 * (max_ - length) * leg_length / gained) : 16 * leg_length;
+      const double gained = length - before; // 0 only for a leg below an ulp
+      leg_length = std::min(longest, gained > 0 ? std::min(16 * leg_length, 1.25 * (max_ - length) * leg_length / gained)
+                                                : 16 * leg_length);
       from = to;
     }
     f.thickness = max_;
   }
 
   double max_;
+  double diagonal_ = 0; // of the domain's bounding box: a longer leg leaves the domain
   std::vector<Facet> facets_;
   double total_area_ = 0;
 };
