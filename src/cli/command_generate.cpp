@@ -154,7 +154,7 @@ int run_generate(const Generate_request& r) {
 
   const Pipeline_metric field = make_pipeline_metric(mesh, metric_input(r, plan, mesh), stage);
   // Said before the long stages: parts thinner than a hex edge are a cause of
-  // non-meshable singularities that no optimisation removes.
+  // non-meshable singularities that the optimisation and the repair rarely remove.
   context.thickness = measure_pipeline_thickness(field, stage);
   if (context.thickness->fraction_below_hex_edge > 0.1) {
     const double t10 = context.thickness->thickness_at_10_percent;
