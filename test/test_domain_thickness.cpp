@@ -40,12 +40,8 @@ void facet_frame(const Field& field, const Thickness::Facet& f, Eigen::Vector3d&
   Tr::Cell_handle c;
   for (auto it = field.triangulation().finite_cells_begin(); it != field.triangulation().finite_cells_end(); ++it)
     if (std::size_t(get(field.cell_index_map(), it)) == f.tet) c = it;
-  Eigen::Vector3d p[3];
-  for (int k = 0, m = 0; k < 4; ++k)
-    if (k != f.facet) p[m++] = CGAL_ext::internal::to_eigen_vector(c->vertex(k)->point());
-  centroid = (p[0] + p[1] + p[2]) / 3;
-  normal = (p[1] - p[0]).cross(p[2] - p[0]).normalized();
-  if ((CGAL_ext::internal::to_eigen_vector(c->vertex(f.facet)->point()) - p[0]).dot(normal) > 0) normal = -normal;
+  double area;
+  CGAL_ext::internal::boundary_facet_geometry(c, f.facet, centroid, normal, area);
 }
 
 } // namespace

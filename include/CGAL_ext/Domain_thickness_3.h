@@ -10,6 +10,7 @@
 
 #include <CGAL_ext/Metric_transport_3.h>
 #include <CGAL_ext/Segment_walk_3.h>
+#include <CGAL_ext/Sharp_features_3.h>
 #include <CGAL_ext/internal/deterministic_parallel.h>
 
 #include <Eigen/Core>
@@ -164,18 +165,13 @@ private:
   }
 
   void measure(const Metric_field& field, const Walk& walk, Cell_handle c, Facet& f) const {
-    Eigen::Vector3d p[3];
-    for (int k = 0, m = 0; k < 4; ++k)
-      if (k != f.facet) p[m++] = internal::to_eigen_vector(c->vertex(k)->point());
-    const Eigen::Vector3d centroid = (p[0] + p[1] + p[2]) / 3;
-    Eigen::Vector3d n = (p[1] - p[0]).cross(p[2] - p[0]);
-    const double twice_area = n.norm();
-    n /= twice_area;
-    if ((internal::to_eigen_vector(c->vertex(f.facet)->point()) - p[0]).dot(n) > 0) n = -n; // outward
+    Eigen::Vector3d centroid, n; // n: the outward unit normal
+    double area;
+    internal::boundary_facet_geometry(c, f.facet, centroid, n, area);
     const Eigen::Matrix3d A = field.A_at(c, point(centroid));
     const Eigen::Matrix3d A_inv = A.inverse();
     // Nanson: the metric area vector is det(A) A^{-T} (area n).
-    f.metric_area = A.determinant() * (A_inv.transpose() * n).norm() * twice_area / 2;
+    f.metric_area = A.determinant() * (A_inv.transpose() * n).norm() * area;
     const Eigen::Vector3d u = A_inv * (A_inv.transpose() * n); // g^{-1} n
     const Eigen::Vector3d inward = -u / (A * u).norm();        // unit length in the metric at the centroid
     // Walk on in legs until the ray leaves the domain or its length reaches
