@@ -18,6 +18,7 @@
 #include <CGAL_ext/Frame_field_singularities_3.h>
 #include <CGAL_ext/Singular_curve_straightening_3.h>
 #include <CGAL_ext/IO/Medit_mesh.h>
+#include <CGAL_ext/Input_error.h>
 #include <CGAL_ext/Metric_field_3.h>
 #include <CGAL_ext/Tet_mesh_triangulation_3.h>
 #include <CGAL_ext/build_triangulation_from_tets.h>
@@ -157,6 +158,12 @@ struct Pipeline_thickness {
   double thickness_at_10_percent = 0;
   /// The number of boundary facets measured.
   std::size_t facets = 0;
+  /// The 10% figure as the stage line and the summary write it.
+  /// \returns "10% under T hex edges", or "90% at least C hex edges thick" when T reaches the cap C
+  std::string tenth_text() const {
+    return thickness_at_10_percent >= cap ? "90% at least " + format_number(cap, 3) + " hex edges thick"
+                                          : "10% under " + format_number(thickness_at_10_percent, 3) + " hex edges";
+  }
 };
 
 /// \ingroup PkgCGALExtPipeline

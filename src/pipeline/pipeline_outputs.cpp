@@ -203,11 +203,8 @@ std::string pipeline_summary_text(const Pipeline_tet_mesh& mesh, const Pipeline_
   }
   if (context.thickness) {
     const Pipeline_thickness& t = *context.thickness;
-    const std::string tenth = t.thickness_at_10_percent >= t.cap
-                                  ? "90% at least " + format_number(t.cap, 3) + " hex edges thick"
-                                  : "10% under " + format_number(t.thickness_at_10_percent, 3) + " hex edges";
     std::snprintf(buf, sizeof buf, "  %-32s %.1f%% of the boundary under one hex edge from the opposite side; %s\n",
-                  "thin parts", 100 * t.fraction_below_hex_edge, tenth.c_str());
+                  "thin parts", 100 * t.fraction_below_hex_edge, t.tenth_text().c_str());
     text += buf;
   }
   // Sharp edges on curves of 1 or 2 edges are not features (Sharp_features_3): say how many.

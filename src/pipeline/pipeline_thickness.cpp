@@ -24,14 +24,10 @@ Pipeline_thickness measure_pipeline_thickness(const Pipeline_metric& metric, con
   r.fraction_below_hex_edge = thickness.area_fraction_below(1);
   r.thickness_at_10_percent = thickness.area_quantile(0.1);
   if (stage) {
-    char detail[300], tenth[80];
-    if (r.thickness_at_10_percent >= r.cap)
-      std::snprintf(tenth, sizeof tenth, "90%% at least %.3g hex edges thick", r.cap);
-    else
-      std::snprintf(tenth, sizeof tenth, "10%% under %.3g hex edges", r.thickness_at_10_percent);
+    char detail[300];
     std::snprintf(detail, sizeof detail,
                   "%zu boundary facets; %.1f%% of the boundary is less than one hex edge from the opposite side, %s",
-                  r.facets, 100 * r.fraction_below_hex_edge, tenth);
+                  r.facets, 100 * r.fraction_below_hex_edge, r.tenth_text().c_str());
     stage("thickness", timer.time(), detail);
   }
   return r;
