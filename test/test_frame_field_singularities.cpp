@@ -13,6 +13,7 @@
 #include <CGAL_ext/Frame_field_repair_3.h>
 #include <CGAL_ext/Frame_field_singularities_3.h>
 #include <CGAL_ext/IO/Perm_file.h>
+#include <CGAL_ext/IO/read_tet_mesh.h>
 #include <CGAL_ext/Metric_field_3.h>
 #include <CGAL_ext/Singular_curve_straightening_3.h>
 #include <CGAL_ext/build_triangulation_from_tets.h>
@@ -1130,7 +1131,7 @@ TEST_CASE("the repair's restarts find meshable minima on a ball, and are reporte
     const auto s = computed_ball_field();
     Singularity_repair_options o;
     o.restarts = {restarts};
-    o.max_further_rounds = 0; // their restarts would blur the comparison
+    o.max_further_rounds = o.max_released_rounds = 0; // their restarts would blur the comparison
     const Singularity_repair_report r = repair_singularities(*s->ff, o);
     INFO("restarts " << restarts << ": rounds " << r.rounds << ", regions " << r.regions_accepted << " of "
                      << r.regions_tried << ", " << r.regions_from_restarts << " from restarts");
@@ -1161,7 +1162,7 @@ TEST_CASE("the repair's further rounds attack what the first rounds leave, and s
   Singularity_repair_options first;
   first.radii = {2};
   first.restarts = {0};
-  first.max_further_rounds = 0;
+  first.max_further_rounds = first.max_released_rounds = 0;
   const Singularity_repair_report p = repair_singularities(ff, first);
   REQUIRE(p.rounds == 1);
 
@@ -1220,6 +1221,106 @@ TEST_CASE("the repair's defects: nodes as edges from a vertex to itself, cluster
   CHECK(internal::defect_weight(Edges{}) == 0);
 }
 
+TEST_CASE("a released hard constraint leaves the frame to its soft boundary terms", "[singularities][repair]") {
+  auto s = field_on(grid(), [](const Eigen::Vector3d&) { return Eigen::Matrix3d::Identity().eval(); });
+  Frames& ff = *s->ff;
+  ff.compute();
+  // A tetrahedron with one boundary face on z = 0 (normal -z), no other.
+  std::map<std::size_t, std::vector<Eigen::Vector3d>> faces;
+  for (const auto& b : ff.boundary_faces()) faces[b.tet].push_back(b.direction);
+  std::size_t t = ff.size();
+  for (const auto& [i, d] : faces)
+    if (d.size() == 1 && std::abs(d[0].z()) > 1 - 1e-12) t = i;
+  REQUIRE(t < ff.size());
+  REQUIRE(ff.has_hard_constraint(t));
+  CHECK_FALSE(ff.hard_constraint_released(t));
+  // The sine of the angle between the face's direction and the frame's nearest axis.
+  auto error = [&] {
+    double best = 1;
+    for (int k = 0; k < 3; ++k) best = std::min(best, ff.rotation(t).col(k).cross(faces[t][0]).norm());
+    return best;
+  };
+  const Eigen::Quaterniond tilted(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 1, 0).normalized()));
+  // Held: every start is snapped onto the face, and only turns about its normal.
+  ff.set_rotation(t, tilted);
+  ff.reoptimize({t}, Frames::Reoptimize_start::current);
+  CHECK(error() < 1e-12);
+  // Released: the soft term pulls the frame back near the face, not exactly onto it.
+  ff.release_hard_constraints({t}, true);
+  CHECK(ff.hard_constraint_released(t));
+  CHECK(ff.has_hard_constraint(t));
+  ff.set_rotation(t, tilted);
+  ff.reoptimize({t}, Frames::Reoptimize_start::current);
+  INFO("released error " << error());
+  CHECK(error() > 1e-9);
+  CHECK(error() < 0.01);
+  // Held again, it is snapped again.
+  ff.release_hard_constraints({t}, false);
+  CHECK_FALSE(ff.hard_constraint_released(t));
+  ff.set_rotation(t, tilted);
+  ff.reoptimize({t}, Frames::Reoptimize_start::current);
+  CHECK(error() < 1e-12);
+  CHECK_THROWS_AS(ff.release_hard_constraints({ff.size()}, true), std::out_of_range);
+}
+
+TEST_CASE("the repair's released rounds remove defects that hard boundary constraints pin, and are reported",
+          "[singularities][repair]") {
+  // Gmsh's anchor at a uniform size (data/gmsh_anchor.geo): where its
+  // coarsely meshed fillets meet the creases, the frames pinned to faces
+  // and feature curves force `1/4 across` edges that no re-optimisation
+  // with the constraints held removes.
+  IO::Medit_mesh mesh;
+  Tr tr;
+  IO::read_tet_mesh(std::string(CGAL_EXT_TEST_DATA_DIR) + "/gmsh_anchor.mesh", tr, &mesh);
+  const Field field(tr, Eigen::Matrix3d::Identity().eval());
+  Frames ff(field);
+  ff.compute();
+  std::vector<Eigen::Quaterniond> computed(ff.size());
+  for (std::size_t i = 0; i < ff.size(); ++i) computed[i] = ff.rotation_quaternion(i);
+  // Fewer rounds and restarts than by default: the test's time.
+  Singularity_repair_options held;
+  held.radii = {2, 3};
+  held.restarts = {0, 0};
+  held.max_further_rounds = 2;
+  held.further_restarts = 4;
+  held.max_released_rounds = 0;
+  const Singularity_repair_report a = repair_singularities(ff, held);
+  CHECK(a.regions_released == 0);
+  CHECK(a.tets_released == 0);
+  for (std::size_t i = 0; i < ff.size(); ++i) REQUIRE_FALSE(ff.hard_constraint_released(i));
+
+  for (std::size_t i = 0; i < ff.size(); ++i) ff.set_rotation(i, computed[i]);
+  ff.update_statistics();
+  Singularity_repair_options released = held;
+  released.max_released_rounds = 2;
+  std::vector<std::size_t> left;
+  released.progress = [&](int, int, std::size_t, std::size_t, std::size_t remaining) { left.push_back(remaining); };
+  const Singularity_repair_report b = repair_singularities(ff, released);
+  INFO("held: " << a.non_meshable_before << " -> " << a.non_meshable_after << " in " << a.rounds
+                << " rounds; released: -> " << b.non_meshable_after << " in " << b.rounds << " rounds, "
+                << b.regions_released << " regions and " << b.tets_released << " tetrahedra released");
+  CHECK(b.non_meshable_before == a.non_meshable_before);
+  REQUIRE(a.non_meshable_after > 0);
+  // The released rounds come after the held ones, whose result they start from.
+  REQUIRE(b.rounds > a.rounds);
+  REQUIRE(left.size() == b.rounds);
+  CHECK(left[a.rounds - 1] == a.non_meshable_after + a.non_meshable_nodes_after);
+  CHECK(b.non_meshable_after < a.non_meshable_after);
+  CHECK(count_non_meshable(singular_edges(ff)) == b.non_meshable_after);
+  CHECK(b.regions_released > 0);
+  CHECK(b.regions_released <= b.regions_accepted);
+  // The tetrahedra left released are those reported, each with a hard constraint.
+  std::size_t released_tets = 0;
+  for (std::size_t i = 0; i < ff.size(); ++i)
+    if (ff.hard_constraint_released(i)) {
+      ++released_tets;
+      CHECK(ff.has_hard_constraint(i));
+    }
+  CHECK(released_tets == b.tets_released);
+  CHECK(released_tets > 0);
+  CHECK(released_tets <= b.tets_changed);
+}
+
 TEST_CASE("the repair refuses options it cannot use", "[singularities][repair]") {
   const auto s = computed_ball_field();
   auto refuses = [&](auto change) {
@@ -1232,6 +1333,7 @@ TEST_CASE("the repair refuses options it cannot use", "[singularities][repair]")
   refuses([](Singularity_repair_options& o) { o.restarts = {0, -6}; });
   refuses([](Singularity_repair_options& o) { o.further_restarts = -1; });
   refuses([](Singularity_repair_options& o) { o.max_further_rounds = -1; });
+  refuses([](Singularity_repair_options& o) { o.max_released_rounds = -1; });
   refuses([](Singularity_repair_options& o) { o.restart_angle_deg = std::nan(""); });
   refuses([](Singularity_repair_options& o) { o.restart_angle_deg = 200; });
 }

@@ -75,7 +75,8 @@ namespace CGAL_ext {
 /// turned so that an axis is exactly on `d` of its largest boundary face (and
 /// a second axis on a second face whose `d` is more than 30 degrees from
 /// the first, projected orthogonally to it), and the refinement only
-/// turns it about that axis (or not at all).
+/// turns it about that axis (or not at all) unless its constraint is
+/// released (`release_hard_constraints()`, which the repair uses).
 ///
 /// **Sharp features** (`Sharp_features_3`, `feature_angle_deg`). With
 /// `hard_boundary`, a tetrahedron with a corner of the boundary takes the
@@ -136,10 +137,12 @@ public:
   }
 
   /// Computes the field: set-up, face transports, linear initialisation,
-  /// projection, refinement (see the class documentation).
+  /// projection, refinement (see the class documentation). Every hard
+  /// constraint is held again (see `release_hard_constraints()`).
   /// \param options the options
   /// \returns the statistics (also kept, see `statistics()`)
   const Frame_field_statistics& compute(const Frame_field_options& options = {}) {
+    released_.clear();
     prepare(options);
     Timer t;
     linear_initialisation();
@@ -427,6 +430,32 @@ public:
     return std::ldexp(e, e_.weight_exponent);
   }
 
+  /// Whether tetrahedron `i` has a hard constraint: a boundary face, a
+  /// feature edge or a corner (`Frame_field_options::hard_boundary` on).
+  /// \param i a tetrahedron index
+  /// \returns whether `i` has one
+  bool has_hard_constraint(std::size_t i) const { return opt_.hard_boundary && e_.constraint_of.at(i) >= 0; }
+
+  /// Releases or holds again the hard constraints of some tetrahedra. A
+  /// released tetrahedron keeps its soft boundary terms only, so that
+  /// `reoptimize()` turns it freely; `repair_singularities()` releases
+  /// those whose constraints force a defect. All are held at construction
+  /// and by `compute()`.
+  /// \param tets the tetrahedron indices
+  /// \param released `true` to release them, `false` to hold them again
+  ///        (their frames are not snapped back: call `reoptimize()` or
+  ///        `set_rotation()`)
+  void release_hard_constraints(const std::vector<std::size_t>& tets, bool released) {
+    if (released_.size() != size()) released_.assign(size(), 0);
+    for (std::size_t i : tets) released_.at(i) = released ? 1 : 0;
+  }
+
+  /// Whether the hard constraint of tetrahedron `i` (if any) is released
+  /// (`release_hard_constraints()`).
+  /// \param i a tetrahedron index
+  /// \returns whether it is released
+  bool hard_constraint_released(std::size_t i) const { return !released_.empty() && released_[i] != 0; }
+
   /// Recomputes the smoothness energy, boundary alignment and
   /// orthonormality of the statistics from the current frames.
   void update_statistics() {
@@ -436,6 +465,9 @@ public:
 
 private:
   using Energy = internal::Frame_field_energy_3<Metric_field>;
+
+  // Whether tetrahedron i's hard constraint (if any) applies.
+  bool hard_constraint_held(std::size_t i) const { return opt_.hard_boundary && !hard_constraint_released(i); }
 
   // The domain's cells in index order; throws if the indices are not 0..n-1.
   static std::vector<Cell_handle> domain_cells(const Metric_field& field) {
@@ -538,7 +570,7 @@ private:
   // Snaps the rotation of tetrahedron i to its hard constraint (if any) and
   // sets its SH vector: the last step of every start.
   void constrain(std::size_t i) {
-    if (opt_.hard_boundary && e_.constraint_of[i] >= 0) q_[i] = Energy::snap(q_[i], e_.constraints[e_.constraint_of[i]]);
+    if (hard_constraint_held(i) && e_.constraint_of[i] >= 0) q_[i] = Energy::snap(q_[i], e_.constraints[e_.constraint_of[i]]);
     s_[i] = rotate_sh(q_[i], octahedral_reference_sh());
   }
 
@@ -651,6 +683,7 @@ private:
   Energy e_;
   std::vector<Sh_vector> s_;
   std::vector<Eigen::Quaterniond> q_;
+  std::vector<char> released_;     // per tetrahedron: hard constraint released (empty: none)
   std::vector<char> marked_;       // scratch of Marked: all 0 between calls
   std::optional<internal::Frame_field_coarse_level> coarse_; // between the initialisation and the refinement
   std::vector<std::size_t> local_; // scratch of Marked: all size_t(-1) between calls

@@ -241,6 +241,18 @@ struct Singularity_repair_options {
   int max_further_rounds = 8;
   /// The radii of the further rounds, taken in turn.
   std::vector<int> further_radii = {3, 2};
+  /// Then, while defects remain: released rounds, at most
+  /// `max_released_rounds`, as the further rounds (their radii and
+  /// restarts, the same stop) but with the hard boundary constraints of the
+  /// regions' tetrahedra released (`Frame_field_3::release_hard_constraints()`):
+  /// those keep their soft boundary terms only, so that frames pinned to
+  /// faces and feature curves that force a defect (a crease between
+  /// frames 45 degrees apart, say) can turn. The regions kept stay released;
+  /// the others are held again. Measured with `metric-frames generate`
+  /// (doc/benchmarks.md): CGAL's anchor at hexes of the diagonal / 15,
+  /// non-meshable edges and nodes 1 and 2 -> 0 and 0; the Gmsh anchor of
+  /// the tests 16 edges -> 0. 0 turns them off.
+  int max_released_rounds = 8;
   /// Restarts per region in each further round.
   int further_restarts = 24;
   /// The largest angle of a restart's turns, in degrees.

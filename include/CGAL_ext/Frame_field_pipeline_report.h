@@ -95,6 +95,8 @@ inline nlohmann::ordered_json pipeline_repair_json(const std::optional<Singulari
           {"regions_tried", fix->regions_tried},
           {"regions_kept", fix->regions_accepted},
           {"regions_from_restarts", fix->regions_from_restarts},
+          {"regions_released", fix->regions_released},
+          {"tets_released", fix->tets_released},
           {"tets_changed", fix->tets_changed},
           {"energy_before", fix->energy_before},
           {"energy_after", fix->energy_after}};

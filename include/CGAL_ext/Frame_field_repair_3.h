@@ -49,6 +49,10 @@ struct Singularity_repair_report {
   /** @} */
   /// Regions kept whose frames came from a restart (`Singularity_repair_options::restarts`).
   std::size_t regions_from_restarts = 0;
+  /// Regions kept from the released rounds
+  /// (`Singularity_repair_options::max_released_rounds`), and the
+  /// tetrahedra with a hard constraint among them, left released.
+  std::size_t regions_released = 0, tets_released = 0;
   /// Tetrahedra in the regions kept.
   std::size_t tets_changed = 0;
   /** @{ */
@@ -140,12 +144,14 @@ public:
   Edges defects(const std::vector<Singular_edge>& edges) const {
     return repair_defects(edges, [&](std::size_t v) { return place_[v]; });
   }
+  // The tetrahedra that released rounds left released, in the order kept.
+  const std::vector<std::size_t>& released() const { return released_; }
   // The matchings of the current frames (updated after every change).
   const Frame_field_matchings_3<Frame_field>& matchings() const { return matchings_; }
 
   // Round `index` (from 0): regions of `radius` rings around the clusters, in
   // batches of regions that share no vertex. Returns the regions tried and kept.
-  std::pair<std::size_t, std::size_t> round(std::size_t index, int radius, int restarts) {
+  std::pair<std::size_t, std::size_t> round(std::size_t index, int radius, int restarts, bool release = false) {
     std::vector<std::vector<std::size_t>> regions;
     for (const auto& cluster : edge_clusters(bad_)) regions.push_back(region(cluster, radius));
     std::size_t tried = 0, kept = 0;
@@ -153,7 +159,7 @@ public:
       if (bad_.empty()) break;
       tried += batch.size();
       ++report_.batches;
-      kept += repair_batch(index, restarts, regions, batch);
+      kept += repair_batch(index, restarts, regions, batch, release);
     }
     return {tried, kept};
   }
@@ -227,7 +233,7 @@ private:
   // fewest non-meshable edges, the lowest energy among equals, if fewer than
   // before; restores the others bit for bit. Returns the regions kept.
   std::size_t repair_batch(std::size_t round, int restarts, const std::vector<std::vector<std::size_t>>& regions,
-                           const std::vector<std::size_t>& batch) {
+                           const std::vector<std::size_t>& batch, bool release) {
     const std::size_t m = batch.size();
     std::vector<std::size_t> tets, seeds;
     for (std::size_t r = 0; r < m; ++r)
@@ -333,6 +339,15 @@ private:
     }
     std::vector<Eigen::Quaterniond> saved(tets.size());
     for (std::size_t k = 0; k < tets.size(); ++k) saved[k] = ff_.rotation_quaternion(tets[k]);
+    // A released round frees the held constraints of its regions (those
+    // released by an earlier batch stay so, whatever this one keeps).
+    std::vector<std::size_t> freed;
+    if (release) {
+      for (std::size_t i : tets)
+        if (ff_.has_hard_constraint(i) && !ff_.hard_constraint_released(i)) freed.push_back(i);
+      ff_.release_hard_constraints(freed, true);
+      std::sort(freed.begin(), freed.end());
+    }
 
     // The relaxed start of the open regions `relaxed_open`, solved once for
     // all the restarts from it (the open regions change rarely).
@@ -377,7 +392,17 @@ private:
         ff_.set_rotation(tets[k], best[r].frames.empty() ? saved[k] : best[r].frames[j]);
     matchings_.update(ff_, tets);
     const Edges here = examine();
+    // The tetrahedra of `freed` in region r; held again unless r is kept.
+    auto freed_in = [&](std::size_t r) {
+      std::vector<std::size_t> out;
+      for (std::size_t i : regions[batch[r]])
+        if (std::binary_search(freed.begin(), freed.end(), i)) out.push_back(i);
+      return out;
+    };
+    for (std::size_t r = 0; r < m; ++r)
+      if (best[r].frames.empty()) ff_.release_hard_constraints(freed_in(r), false);
     if (defect_weight(here) >= defect_weight(old_here)) { // a curve's typing reaches past a region: undo
+      ff_.release_hard_constraints(freed, false);
       for (std::size_t k = 0; k < tets.size(); ++k) ff_.set_rotation(tets[k], saved[k]);
       matchings_.update(ff_, tets);
       for (std::size_t i : inner) inner_[i] = 0;
@@ -395,6 +420,12 @@ private:
         ++kept;
         report_.regions_from_restarts += best[r].start >= 2;
         report_.tets_changed += regions[batch[r]].size();
+        if (release) {
+          ++report_.regions_released;
+          const std::vector<std::size_t> now_released = freed_in(r);
+          report_.tets_released += now_released.size();
+          released_.insert(released_.end(), now_released.begin(), now_released.end());
+        }
       }
     return kept;
   }
@@ -413,6 +444,7 @@ private:
   std::vector<char> in_, reached_, inner_;
   std::vector<Vertex_place> place_;
   Edges bad_;
+  std::vector<std::size_t> released_;
 };
 
 } // namespace internal
@@ -441,7 +473,11 @@ private:
 /// `Singularity_repair_options::radii`, further rounds
 /// (`max_further_rounds`, `further_radii`, `further_restarts`) go on from
 /// the frames the previous ones left while defects remain, until a whole
-/// turn of their radii keeps nothing.
+/// turn of their radii keeps nothing. Then released rounds
+/// (`max_released_rounds`) go on alike with the hard boundary constraints
+/// of each region's tetrahedra released (soft boundary terms only), for
+/// defects that frames pinned to the boundary force; the regions kept
+/// stay released (`Frame_field_3::hard_constraint_released()`).
 /// Only the edges within `singular_curve_direction_span + 1`
 /// rings of the regions can change type; they are typed from the edges
 /// within `singular_curve_direction_span + 1` more rings (the matchings are
@@ -466,7 +502,7 @@ Singularity_repair_report repair_singularities(Frame_field& ff, const Singularit
   };
   if (!positive(options.radii) || !positive(options.further_radii))
     throw std::invalid_argument("repair_singularities: region radii must be at least 1");
-  if (options.max_further_rounds < 0 || options.further_restarts < 0 ||
+  if (options.max_further_rounds < 0 || options.max_released_rounds < 0 || options.further_restarts < 0 ||
       std::any_of(options.restarts.begin(), options.restarts.end(), [](int r) { return r < 0; }))
     throw std::invalid_argument("repair_singularities: restarts and rounds must not be negative");
   if (!(options.restart_angle_deg >= 0 && options.restart_angle_deg <= 180))
@@ -486,9 +522,9 @@ Singularity_repair_report repair_singularities(Frame_field& ff, const Singularit
   if (repairer.non_meshable().empty()) return report;
   std::vector<Eigen::Quaterniond> original(ff.size()); // to undo everything if the final check fails
   for (std::size_t i = 0; i < ff.size(); ++i) original[i] = ff.rotation_quaternion(i);
-  auto round = [&](int radius, int restarts) {
+  auto round = [&](int radius, int restarts, bool release = false) {
     ++report.rounds;
-    const auto [tried, kept] = repairer.round(report.rounds - 1, radius, restarts);
+    const auto [tried, kept] = repairer.round(report.rounds - 1, radius, restarts, release);
     report.regions_tried += tried;
     report.regions_accepted += kept;
     if (options.progress) options.progress(int(report.rounds), radius, tried, kept, repairer.non_meshable().size());
@@ -496,21 +532,26 @@ Singularity_repair_report repair_singularities(Frame_field& ff, const Singularit
   };
   for (std::size_t k = 0; k < options.radii.size() && !repairer.non_meshable().empty(); ++k)
     round(options.radii[k], k < options.restarts.size() ? options.restarts[k] : 0);
-  // Further rounds, until a whole turn of their radii keeps nothing.
+  // Further rounds, then released ones, each until a whole turn of their
+  // radii keeps nothing.
   const std::size_t turn = options.further_radii.size();
-  for (int k = 0, idle = 0; k < options.max_further_rounds && turn > 0 && idle < int(turn) &&
-                            !repairer.non_meshable().empty();
-       ++k) {
-    const std::size_t kept = round(options.further_radii[std::size_t(k) % turn], options.further_restarts);
-    idle = kept > 0 ? 0 : idle + 1;
-  }
+  auto rounds_until_idle = [&](int max_rounds, bool release) {
+    for (int k = 0, idle = 0; k < max_rounds && turn > 0 && idle < int(turn) && !repairer.non_meshable().empty(); ++k) {
+      const std::size_t kept = round(options.further_radii[std::size_t(k) % turn], options.further_restarts, release);
+      idle = kept > 0 ? 0 : idle + 1;
+    }
+  };
+  rounds_until_idle(options.max_further_rounds, false);
+  rounds_until_idle(options.max_released_rounds, true);
   // The final count from all edges: the field is never left worse (more
   // non-meshable edges, or as many and more nodes).
   count(repairer.defects(singular_edges(ff, repairer.matchings())), report.non_meshable_after,
         report.non_meshable_nodes_after);
   if (std::make_pair(report.non_meshable_after, report.non_meshable_nodes_after) >
       std::make_pair(report.non_meshable_before, report.non_meshable_nodes_before)) {
+    ff.release_hard_constraints(repairer.released(), false);
     for (std::size_t i = 0; i < ff.size(); ++i) ff.set_rotation(i, original[i]);
+    report.regions_released = report.tets_released = 0;
     report.non_meshable_after = report.non_meshable_before;
     report.non_meshable_nodes_after = report.non_meshable_nodes_before;
     report.regions_accepted = report.regions_from_restarts = report.tets_changed = 0;

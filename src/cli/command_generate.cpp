@@ -185,7 +185,7 @@ int run_generate(const Generate_request& r) {
   if (!r.no_repair) {
     repair_options.emplace();
     repair_options->restarts = {0, r.repair_restarts}; // the second round restarts, as by default
-    repair_options->max_further_rounds = r.repair_rounds;
+    repair_options->max_further_rounds = repair_options->max_released_rounds = r.repair_rounds;
     repair_options->progress = [](int round, int radius, std::size_t tried, std::size_t accepted, std::size_t left) {
       std::fprintf(stderr, "[progress] repair round %d (radius %d): %zu regions, %zu kept, %zu non-meshable edges and nodes left\n",
                    round, radius, tried, accepted, left);

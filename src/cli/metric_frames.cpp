@@ -334,7 +334,7 @@ CLI::App* add_generate(CLI::App& app, Generate_request& r) {
   sub.add_option("--repair-rounds", r.repair_rounds,
                  "further repair rounds at most, after the three of radius 2, 3 and 4, while non-meshable edges or "
                  "nodes remain: radius 3 and 2 in turn, 24 random restarts per region each; they stop when two in a row "
-                 "fix nothing (0: none)")
+                 "fix nothing; then as many again with the regions' hard boundary constraints released (0: none)")
       ->type_name("N")
       ->transform(whole_number(0, 1e6))
       ->excludes(no_repair)

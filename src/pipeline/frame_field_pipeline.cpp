@@ -240,7 +240,8 @@ Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric
                         " non-meshable edges, " + std::to_string(fix.non_meshable_nodes_before) + " -> " +
                         std::to_string(fix.non_meshable_nodes_after) + " nodes; " + std::to_string(fix.regions_accepted) + " of " +
                         std::to_string(fix.regions_tried) + " regions kept (" +
-                        std::to_string(fix.regions_from_restarts) + " from restarts), energy " +
+                        std::to_string(fix.regions_from_restarts) + " from restarts, " +
+                        std::to_string(fix.regions_released) + " with hard constraints released), energy " +
                         format_number(fix.energy_before, 10) + " -> " + format_number(fix.energy_after, 10));
   }
   r.matchings = std::make_unique<Pipeline_matchings_3>(ff);

@@ -129,7 +129,7 @@ inline double Frame_field_3<Metric_field>::
     }
     if (g) {
       Eigen::Vector3d gi = sh_rotation_jacobian(s_[i]).transpose() * grad;
-      if (opt_.hard_boundary && c >= 0) {
+      if (c >= 0 && hard_constraint_held(i)) {
         const auto& C = e_.constraints[c];
         gi = C.axes == 2 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(gi.dot(C.d1) * C.d1);
       }
@@ -201,7 +201,7 @@ inline int Frame_field_3<Metric_field>::lbfgs(const Active_set& set, int& evalua
   if (opt_.hard_boundary) // undo the rounding drift of the constrained axes
     internal::parallel_for_each_index(n, [&](std::size_t k) {
       const std::size_t i = set.tet(k);
-      if (e_.constraint_of[i] >= 0) constrain(i);
+      if (e_.constraint_of[i] >= 0 && hard_constraint_held(i)) constrain(i);
     });
   return out.iterations;
 }
