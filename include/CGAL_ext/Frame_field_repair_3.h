@@ -49,10 +49,12 @@ struct Singularity_repair_report {
   /** @} */
   /// Regions kept whose frames came from a restart (`Singularity_repair_options::restarts`).
   std::size_t regions_from_restarts = 0;
+  /** @{ */
   /// Regions kept from the released rounds
   /// (`Singularity_repair_options::max_released_rounds`), and the
   /// tetrahedra with a hard constraint among them, left released.
   std::size_t regions_released = 0, tets_released = 0;
+  /** @} */
   /// Tetrahedra in the regions kept.
   std::size_t tets_changed = 0;
   /** @{ */
