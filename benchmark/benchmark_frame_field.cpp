@@ -59,7 +59,8 @@ static int run(int argc, char** argv) {
     if (arg.rfind("linear_tolerance=", 0) == 0) options.linear_tolerance = std::atof(arg.c_str() + 17);
     else if (arg.rfind("energy_tolerance=", 0) == 0) options.energy_tolerance = std::atof(arg.c_str() + 17);
     else if (arg.rfind("aggregate_size=", 0) == 0) options.aggregate_size = std::atoi(arg.c_str() + 15);
-    else if (arg.rfind("repair_rounds=", 0) == 0) repair_options.max_further_rounds = std::atoi(arg.c_str() + 14);
+    else if (arg.rfind("repair_rounds=", 0) == 0) // as generate's --repair-rounds
+      repair_options.max_further_rounds = repair_options.max_released_rounds = std::atoi(arg.c_str() + 14);
     else if (arg == "trace")
       options.iteration_progress = [](const std::string& stage, int it, double value) {
         if (it % 10 == 0) std::printf("%8s %s %d: %.8g\n", "", stage.c_str(), it, value);
@@ -71,9 +72,10 @@ static int run(int argc, char** argv) {
               input.c_str(), tbb::info::default_concurrency());
   std::printf("%8s %9s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s %9s %8s\n", "size", "tets", "Mesh_3", "build", "setup",
               "transp", "linear", "project", "refine", "repair", "singul", "total*", "us/tet*", "peak GB");
-  std::printf("linear_tolerance %g, energy_tolerance %g, aggregate_size %d; repair: at most %d further rounds\n",
+  std::printf("linear_tolerance %g, energy_tolerance %g, aggregate_size %d; repair: at most %d further rounds and %d "
+              "released ones\n",
               options.linear_tolerance, options.energy_tolerance, options.aggregate_size,
-              repair_options.max_further_rounds);
+              repair_options.max_further_rounds, repair_options.max_released_rounds);
   for (const double size : sizes) {
     CGAL_ext::Tetrahedralize_options mo;
     mo.size = size;

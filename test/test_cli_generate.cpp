@@ -794,7 +794,7 @@ TEST_CASE("generate's --repair-rounds reaches the repair: its further rounds rem
   CHECK(number(report[8], "/repair/rounds") > 3);
   CHECK(number(report[8], "/repair/rounds") <= 19); // 3, then 8 further and 8 released at most
   CHECK(number(report[8], "/repair/non_meshable_after") < number(report[0], "/repair/non_meshable_after"));
-  CHECK(number(report[8], "/repair/regions_from_restarts") > 0); // only the further rounds restart
+  CHECK(number(report[8], "/repair/regions_from_restarts") > 0); // only the further and released rounds restart
 }
 
 TEST_CASE("generate does not depend on the unit of length and refuses sizes beyond 1e60", "[cli][generate]") {

@@ -358,7 +358,7 @@ public:
 
   /// Re-optimises the frames of some tetrahedra, all others fixed, as
   /// `compute()` does globally: a start (see `Reoptimize_start`), turned
-  /// if `seed` is not 0, with the hard constraints applied, then L-BFGS on
+  /// if `seed` is not 0, with the held hard constraints applied, then L-BFGS on
   /// their rotations. The result depends on the surrounding frames, the
   /// start and the seed, not on the previous frames of the tetrahedra given
   /// (except from the `current` start) nor on the thread count. The
@@ -412,7 +412,7 @@ public:
   /// smoothness terms of the faces of the tetrahedra given (each face once)
   /// plus their soft boundary terms; and its gradient in their left rotation
   /// increments `w` (`R <- exp([w]_x) R`), projected on the axes that the
-  /// hard constraints leave free. Its norm after `compute()` tells how far
+  /// held hard constraints leave free. Its norm after `compute()` tells how far
   /// from a stationary point the optimiser stopped.
   /// \param tets the tetrahedron indices (distinct), or empty for all
   /// \param gradient receives the gradient, one vector per tetrahedron of
@@ -432,29 +432,44 @@ public:
 
   /// Whether tetrahedron `i` has a hard constraint: a boundary face, a
   /// feature edge or a corner (`Frame_field_options::hard_boundary` on).
+  /// Known once the field is set up (by `compute()`, `set_rotations()` or
+  /// `reoptimize()`); false before.
   /// \param i a tetrahedron index
   /// \returns whether `i` has one
-  bool has_hard_constraint(std::size_t i) const { return opt_.hard_boundary && e_.constraint_of.at(i) >= 0; }
+  /// \throws std::out_of_range for an index of no tetrahedron
+  bool has_hard_constraint(std::size_t i) const {
+    if (i >= size()) throw std::out_of_range("has_hard_constraint: no tetrahedron " + std::to_string(i));
+    return opt_.hard_boundary && i < e_.constraint_of.size() && e_.constraint_of[i] >= 0;
+  }
 
   /// Releases or holds again the hard constraints of some tetrahedra. A
-  /// released tetrahedron keeps its soft boundary terms only, so that
-  /// `reoptimize()` turns it freely; `repair_singularities()` releases
-  /// those whose constraints force a defect. All are held at construction
-  /// and by `compute()`.
+  /// released tetrahedron keeps the soft terms of its boundary faces only,
+  /// so that `reoptimize()` turns it freely: at a feature curve or a corner
+  /// nothing holds the curve's tangent or the corner's frame any more.
+  /// `repair_singularities()` releases the regions whose re-optimisation
+  /// needs it. All are held at construction and by `compute()`;
+  /// `set_rotation()` and `set_rotations()` leave the flags as they are.
   /// \param tets the tetrahedron indices
   /// \param released `true` to release them, `false` to hold them again
   ///        (their frames are not snapped back: call `reoptimize()` or
   ///        `set_rotation()`)
+  /// \throws std::out_of_range for an index of no tetrahedron (nothing is changed)
   void release_hard_constraints(const std::vector<std::size_t>& tets, bool released) {
+    for (std::size_t i : tets)
+      if (i >= size()) throw std::out_of_range("release_hard_constraints: no tetrahedron " + std::to_string(i));
     if (released_.size() != size()) released_.assign(size(), 0);
-    for (std::size_t i : tets) released_.at(i) = released ? 1 : 0;
+    for (std::size_t i : tets) released_[i] = released ? 1 : 0;
   }
 
   /// Whether the hard constraint of tetrahedron `i` (if any) is released
   /// (`release_hard_constraints()`).
   /// \param i a tetrahedron index
   /// \returns whether it is released
-  bool hard_constraint_released(std::size_t i) const { return !released_.empty() && released_[i] != 0; }
+  /// \throws std::out_of_range for an index of no tetrahedron
+  bool hard_constraint_released(std::size_t i) const {
+    if (i >= size()) throw std::out_of_range("hard_constraint_released: no tetrahedron " + std::to_string(i));
+    return !released_.empty() && released_[i] != 0;
+  }
 
   /// Recomputes the smoothness energy, boundary alignment and
   /// orthonormality of the statistics from the current frames.
@@ -467,7 +482,7 @@ private:
   using Energy = internal::Frame_field_energy_3<Metric_field>;
 
   // Whether tetrahedron i's hard constraint (if any) applies.
-  bool hard_constraint_held(std::size_t i) const { return opt_.hard_boundary && !hard_constraint_released(i); }
+  bool hard_constraint_held(std::size_t i) const { return opt_.hard_boundary && (released_.empty() || !released_[i]); }
 
   // The domain's cells in index order; throws if the indices are not 0..n-1.
   static std::vector<Cell_handle> domain_cells(const Metric_field& field) {

@@ -152,10 +152,20 @@ public:
   const Frame_field_matchings_3<Frame_field>& matchings() const { return matchings_; }
 
   // Round `index` (from 0): regions of `radius` rings around the clusters, in
-  // batches of regions that share no vertex. Returns the regions tried and kept.
+  // batches of regions that share no vertex. A released round (`release`)
+  // takes only the regions with a held hard constraint, and releases them.
+  // Returns the regions tried and kept.
   std::pair<std::size_t, std::size_t> round(std::size_t index, int radius, int restarts, bool release = false) {
     std::vector<std::vector<std::size_t>> regions;
     for (const auto& cluster : edge_clusters(bad_)) regions.push_back(region(cluster, radius));
+    if (release)
+      regions.erase(std::remove_if(regions.begin(), regions.end(),
+                                   [&](const std::vector<std::size_t>& tets) {
+                                     return std::none_of(tets.begin(), tets.end(), [&](std::size_t i) {
+                                       return ff_.has_hard_constraint(i) && !ff_.hard_constraint_released(i);
+                                     });
+                                   }),
+                    regions.end());
     std::size_t tried = 0, kept = 0;
     for (const std::vector<std::size_t>& batch : batches(regions)) {
       if (bad_.empty()) break;
@@ -233,7 +243,9 @@ private:
   // propagated one, then the restarts, each start for the regions that
   // still have non-meshable edges. Keeps for each region the frames with the
   // fewest non-meshable edges, the lowest energy among equals, if fewer than
-  // before; restores the others bit for bit. Returns the regions kept.
+  // before; restores the others bit for bit. With `release`, the regions'
+  // held hard constraints are released while they are re-optimised, and
+  // stay so in the regions kept. Returns the regions kept.
   std::size_t repair_batch(std::size_t round, int restarts, const std::vector<std::vector<std::size_t>>& regions,
                            const std::vector<std::size_t>& batch, bool release) {
     const std::size_t m = batch.size();
@@ -320,7 +332,14 @@ private:
       std::sort(set.begin(), set.end());
       set.erase(std::unique(set.begin(), set.end()), set.end());
     }
+    // With `release`, the objective of the re-optimisation itself (the
+    // region's faces and soft boundary terms), so that a start does not win
+    // by leaving the boundary.
     auto energy = [&](std::size_t r) {
+      if (release) {
+        std::vector<Eigen::Vector3d> gradient;
+        return ff_.refinement_objective(regions[batch[r]], gradient);
+      }
       double e = 0;
       for (std::size_t i : energy_set[r]) e += ff_.local_smoothness_energy(i);
       return e;
@@ -422,9 +441,9 @@ private:
         ++kept;
         report_.regions_from_restarts += best[r].start >= 2;
         report_.tets_changed += regions[batch[r]].size();
-        if (release) {
+        const std::vector<std::size_t> now_released = freed_in(r);
+        if (!now_released.empty()) {
           ++report_.regions_released;
-          const std::vector<std::size_t> now_released = freed_in(r);
           report_.tets_released += now_released.size();
           released_.insert(released_.end(), now_released.begin(), now_released.end());
         }
@@ -464,7 +483,7 @@ private:
 /// tetrahedra within `radius` vertex rings of its vertices: its region.
 /// Regions that share no vertex form a batch and are re-optimised together
 /// with all other frames fixed (`Frame_field_3::reoptimize()`, hard boundary
-/// constraints kept): from the `relaxed` start, the `propagated` one, and
+/// constraints held): from the `relaxed` start, the `propagated` one, and
 /// the round's restarts (`Singularity_repair_options::restarts`: the relaxed
 /// start turned by seeded random rotations), each start for the regions
 /// that still have defects. Each region is judged alone, by the defects its
@@ -476,10 +495,14 @@ private:
 /// (`max_further_rounds`, `further_radii`, `further_restarts`) go on from
 /// the frames the previous ones left while defects remain, until a whole
 /// turn of their radii keeps nothing. Then released rounds
-/// (`max_released_rounds`) go on alike with the hard boundary constraints
-/// of each region's tetrahedra released (soft boundary terms only), for
-/// defects that frames pinned to the boundary force; the regions kept
-/// stay released (`Frame_field_3::hard_constraint_released()`).
+/// (`max_released_rounds`) go on alike, for the regions that have hard
+/// boundary constraints, with those released (soft boundary terms only: a
+/// released tetrahedron at a feature curve or corner no longer holds its
+/// tangent or corner frame), for defects that frames pinned to the
+/// boundary force; a start is then judged by the re-optimisation's own
+/// objective (smoothness and soft boundary terms). The regions kept stay
+/// released (`Frame_field_3::hard_constraint_released()`), also for a
+/// later call.
 /// Only the edges within `singular_curve_direction_span + 1`
 /// rings of the regions can change type; they are typed from the edges
 /// within `singular_curve_direction_span + 1` more rings (the matchings are

@@ -66,7 +66,7 @@ struct Generate_request {
   Frame_field_options options;
   /// The restarts of the repair's second round (unless `no_repair`).
   int repair_restarts = Singularity_repair_options().restarts.at(1);
-  /// The repair's further rounds at most (unless `no_repair`).
+  /// The repair's further rounds at most, and its released rounds (unless `no_repair`).
   int repair_rounds = Singularity_repair_options().max_further_rounds;
 };
 /// Writes the frame field, its singularities and the output files.
