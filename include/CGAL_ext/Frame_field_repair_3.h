@@ -161,9 +161,8 @@ public:
     if (release)
       regions.erase(std::remove_if(regions.begin(), regions.end(),
                                    [&](const std::vector<std::size_t>& tets) {
-                                     return std::none_of(tets.begin(), tets.end(), [&](std::size_t i) {
-                                       return ff_.has_hard_constraint(i) && !ff_.hard_constraint_released(i);
-                                     });
+                                     return std::none_of(tets.begin(), tets.end(),
+                                                         [&](std::size_t i) { return releasable(i); });
                                    }),
                     regions.end());
     std::size_t tried = 0, kept = 0;
@@ -178,6 +177,8 @@ public:
 
 private:
   std::size_t vertex(std::size_t i, int k) const { return ff_.vertex_index(ff_.cell(i)->vertex(k)); }
+  // Whether a released round can free tetrahedron i: a hard constraint, held.
+  bool releasable(std::size_t i) const { return ff_.has_hard_constraint(i) && !ff_.hard_constraint_released(i); }
 
   // The tetrahedra within `radius` vertex rings of some vertices, sorted.
   std::vector<std::size_t> region(const std::vector<std::size_t>& seeds, int radius) {
@@ -365,7 +366,7 @@ private:
     std::vector<std::size_t> freed;
     if (release) {
       for (std::size_t i : tets)
-        if (ff_.has_hard_constraint(i) && !ff_.hard_constraint_released(i)) freed.push_back(i);
+        if (releasable(i)) freed.push_back(i);
       ff_.release_hard_constraints(freed, true);
       std::sort(freed.begin(), freed.end());
     }
