@@ -147,7 +147,7 @@ TEST_CASE("generate writes the six files, and the identity metric on a cube give
   REQUIRE(vtu.cell_data.count("metric"));
   CHECK(vtu.cell_data.at("metric").values.size() == 9 * nt);
   CHECK(vtu.cell_data.at("metric").values[0] == Approx(1 / (h * h)));
-  for (const char* name : {"energy_density", "boundary", "alignment_error_deg"}) {
+  for (const char* name : {"energy_density", "boundary", "alignment_error_deg", "hard_axes", "hard_constraint_released"}) {
     REQUIRE(vtu.cell_data.count(name));
     CHECK(vtu.cell_data.at(name).values.size() == nt);
   }
@@ -176,6 +176,29 @@ TEST_CASE("generate writes the six files, and the identity metric on a cube give
     for (int k = 0; k < 4; ++k) on_boundary = on_boundary || facet_count[facet(t, k)] == 1;
     CHECK(b[t] == (on_boundary ? 1.0 : 0.0));
   }
+  // "hard_axes": an axis on the face's normal for every tet with a boundary
+  // face, the whole frame for those with faces on two sides of the cube (at
+  // its edges and corners); nothing released (nothing to repair).
+  const auto& hard = vtu.cell_data.at("hard_axes").values;
+  std::size_t whole_frames = 0;
+  for (std::size_t t = 0; t < nt; ++t) {
+    std::set<std::pair<int, double>> planes; // the cube's faces that t has a facet on
+    for (int k = 0; k < 4; ++k) {
+      if (facet_count[facet(t, k)] != 1) continue;
+      const auto f = facet(t, k);
+      for (int c = 0; c < 3; ++c)
+        if (input.vertices[f[0]][c] == input.vertices[f[1]][c] && input.vertices[f[0]][c] == input.vertices[f[2]][c])
+          planes.emplace(c, input.vertices[f[0]][c]);
+    }
+    INFO("tet " << t);
+    CHECK((hard[t] == 0 || hard[t] == 1 || hard[t] == 2));
+    if (planes.size() == 1) CHECK(hard[t] >= 1);
+    if (planes.size() >= 2) CHECK(hard[t] == 2);
+    whole_frames += hard[t] == 2;
+  }
+  CHECK(whole_frames > 0);
+  const auto& released = vtu.cell_data.at("hard_constraint_released").values;
+  CHECK(std::count(released.begin(), released.end(), 0.0) == std::ptrdiff_t(nt));
 
   const auto sing = CGAL_ext::testing::read_vtu((out / "singularities.vtu").string());
   CHECK(sing.number_of_cells == 0);
@@ -984,4 +1007,43 @@ TEST_CASE("the pipeline's library functions write the files of generate, bit for
   input.per_vertex->pop_back();
   CHECK_THROWS_WITH(CGAL_ext::make_pipeline_metric(mesh, input),
                     Catch::Contains(sol) && Catch::Contains("mesh vertices"));
+}
+
+TEST_CASE("frames.vtu marks the tetrahedra whose hard constraints the repair released", "[cli][generate][pipeline]") {
+  // Gmsh's coarse anchor: the released rounds keep regions (as in the
+  // repair's own test, with fewer rounds than by default for the time).
+  const std::string anchor = data_dir + "/gmsh_anchor.mesh";
+  const CGAL_ext::Pipeline_tet_mesh mesh = CGAL_ext::load_tet_mesh(anchor);
+  CGAL_ext::Pipeline_metric_input input;
+  input.hex_size = 1;
+  const CGAL_ext::Pipeline_metric metric = CGAL_ext::make_pipeline_metric(mesh, input);
+  CGAL_ext::Singularity_repair_options repair;
+  repair.radii = {2, 3};
+  repair.restarts = {0, 0};
+  repair.max_further_rounds = 2;
+  repair.further_restarts = 4;
+  repair.max_released_rounds = 2;
+  const CGAL_ext::Pipeline_frame_field frames =
+      CGAL_ext::generate_pipeline_frame_field(metric, CGAL_ext::Frame_field_options(), repair);
+  REQUIRE(frames.repair);
+  REQUIRE(frames.repair->tets_released > 0);
+  const std::string dir = (work / "released_vtu").string();
+  CGAL_ext::write_pipeline_outputs(dir, mesh, frames);
+  const auto vtu = CGAL_ext::testing::read_vtu(dir + "/frames.vtu");
+  const auto& ff = *frames.frames;
+  const auto& released = vtu.cell_data.at("hard_constraint_released").values;
+  const auto& hard = vtu.cell_data.at("hard_axes").values;
+  REQUIRE(released.size() == ff.size());
+  REQUIRE(hard.size() == ff.size());
+  std::size_t count = 0;
+  for (std::size_t t = 0; t < ff.size(); ++t) {
+    INFO("tet " << t);
+    CHECK(released[t] == (ff.hard_constraint_released(t) ? 1.0 : 0.0));
+    CHECK(hard[t] == ff.hard_constraint_axes(t));
+    CHECK((ff.has_hard_constraint(t) ? hard[t] >= 1 && hard[t] <= 2 : hard[t] == 0));
+    if (released[t] != 0) CHECK(hard[t] >= 1); // only a hard constraint can be released
+    count += released[t] != 0;
+  }
+  CHECK(count == frames.repair->tets_released);
+  CHECK_THROWS_AS(ff.hard_constraint_axes(ff.size()), std::out_of_range);
 }

@@ -442,6 +442,19 @@ public:
     return opt_.hard_boundary && i < e_.constraint_of.size() && e_.constraint_of[i] >= 0;
   }
 
+  /// The number of frame axes that the hard constraint of tetrahedron `i`
+  /// fixes, whether held or released (`hard_constraint_released()`): 0 (no
+  /// hard constraint), 1 (an axis on a face's normal or a feature edge's
+  /// tangent) or 2 (the whole frame: two boundary faces more than 30 degrees
+  /// apart, a feature edge's tangent and a face, or a corner).
+  /// \param i a tetrahedron index
+  /// \returns 0, 1 or 2
+  /// \throws std::out_of_range for an index of no tetrahedron
+  int hard_constraint_axes(std::size_t i) const {
+    if (!has_hard_constraint(i)) return 0; // checks the index
+    return e_.constraints[std::size_t(e_.constraint_of[i])].axes;
+  }
+
   /// Releases or holds again the hard constraints of some tetrahedra. A
   /// released tetrahedron keeps the soft terms of its boundary faces only,
   /// so that `reoptimize()` turns it freely: at a feature curve or a corner

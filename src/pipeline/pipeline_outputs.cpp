@@ -49,7 +49,8 @@ void write_frame_files(const std::filesystem::path& dir, const IO::Medit_mesh& m
   std::array<IO::Vtu_array, 3> grad{{{"parameter_gradient_1", 3, {}}, {"parameter_gradient_2", 3, {}},
                                      {"parameter_gradient_3", 3, {}}}};
   IO::Vtu_array gm{"metric", 9, {}}, density{"energy_density", 1, {}}, boundary{"boundary", 1, {}, true},
-      align{"alignment_error_deg", 1, {}};
+      align{"alignment_error_deg", 1, {}}, hard_axes{"hard_axes", 1, {}, true},
+      released{"hard_constraint_released", 1, {}, true};
   std::vector<double> alignment(nt, 0.0);
   std::vector<char> on_boundary(nt, 0);
   for (const auto& b : ff.boundary_faces()) {
@@ -70,12 +71,15 @@ void write_frame_files(const std::filesystem::path& dir, const IO::Medit_mesh& m
     density.values.push_back(ff.energy_density(i));
     boundary.values.push_back(on_boundary[i]);
     align.values.push_back(alignment[i]);
+    hard_axes.values.push_back(ff.hard_constraint_axes(i));
+    released.values.push_back(ff.hard_constraint_released(i) ? 1 : 0);
   }
   IO::write_fra((dir / "frames.fra").string(), gradients);
   IO::write_perm((dir / "frames.perm").string(), matchings.perm_file(ff));
   IO::write_medit_mesh((dir / "mesh.mesh").string(), mesh);
   IO::write_vtu_tetrahedra((dir / "frames.vtu").string(), mesh.vertices, mesh.tetrahedra,
-                           {edge[0], edge[1], edge[2], grad[0], grad[1], grad[2], gm, density, boundary, align});
+                           {edge[0], edge[1], edge[2], grad[0], grad[1], grad[2], gm, density, boundary, align, hard_axes,
+                            released});
 }
 
 // singularities.vtu: the singular edges as lines, nodes as point data.
