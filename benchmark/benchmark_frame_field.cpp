@@ -47,7 +47,7 @@ double since(std::chrono::steady_clock::time_point t) {
 static int run(int argc, char** argv) {
   if (argc < 3) {
     std::fprintf(stderr, "usage: benchmark_frame_field INPUT SIZE [SIZE ...] [linear_tolerance=T] [energy_tolerance=T]\n"
-                         "       [aggregate_size=N] [repair_rounds=N] [trace]   (INPUT: surface file or builtin:NAME)\n");
+                         "       [aggregate_size=N] [repair_rounds=N] [repair_restarts=N] [trace]   (INPUT: surface file or builtin:NAME)\n");
     return 2;
   }
   const std::string input = argv[1];
@@ -61,6 +61,8 @@ static int run(int argc, char** argv) {
     else if (arg.rfind("aggregate_size=", 0) == 0) options.aggregate_size = std::atoi(arg.c_str() + 15);
     else if (arg.rfind("repair_rounds=", 0) == 0) // as generate's --repair-rounds
       repair_options.max_further_rounds = repair_options.max_released_rounds = std::atoi(arg.c_str() + 14);
+    else if (arg.rfind("repair_restarts=", 0) == 0) // as generate's --repair-restarts
+      repair_options.restarts = {0, std::atoi(arg.c_str() + 16)};
     else if (arg == "trace")
       options.iteration_progress = [](const std::string& stage, int it, double value) {
         if (it % 10 == 0) std::printf("%8s %s %d: %.8g\n", "", stage.c_str(), it, value);
@@ -72,10 +74,11 @@ static int run(int argc, char** argv) {
               input.c_str(), tbb::info::default_concurrency());
   std::printf("%8s %9s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s %9s %8s\n", "size", "tets", "Mesh_3", "build", "setup",
               "transp", "linear", "project", "refine", "repair", "singul", "total*", "us/tet*", "peak GB");
-  std::printf("linear_tolerance %g, energy_tolerance %g, aggregate_size %d; repair: at most %d further rounds and %d "
-              "released ones\n",
+  std::printf("linear_tolerance %g, energy_tolerance %g, aggregate_size %d; repair: %d restarts in the second round, "
+              "at most %d further rounds and %d released ones\n",
               options.linear_tolerance, options.energy_tolerance, options.aggregate_size,
-              repair_options.max_further_rounds, repair_options.max_released_rounds);
+              repair_options.restarts.size() > 1 ? repair_options.restarts[1] : 0, repair_options.max_further_rounds,
+              repair_options.max_released_rounds);
   for (const double size : sizes) {
     CGAL_ext::Tetrahedralize_options mo;
     mo.size = size;
