@@ -47,7 +47,8 @@ double since(std::chrono::steady_clock::time_point t) {
 static int run(int argc, char** argv) {
   if (argc < 3) {
     std::fprintf(stderr, "usage: benchmark_frame_field INPUT SIZE [SIZE ...] [linear_tolerance=T] [energy_tolerance=T]\n"
-                         "       [aggregate_size=N] [repair_rounds=N] [repair_restarts=N] [trace]   (INPUT: surface file or builtin:NAME)\n");
+                         "       [aggregate_size=N] [repair_rounds=N] [repair_restarts=N] [repair_lbfgs_memory=N] [trace]\n"
+                         "       (INPUT: surface file or builtin:NAME)\n");
     return 2;
   }
   const std::string input = argv[1];
@@ -63,6 +64,8 @@ static int run(int argc, char** argv) {
       repair_options.max_further_rounds = repair_options.max_released_rounds = std::atoi(arg.c_str() + 14);
     else if (arg.rfind("repair_restarts=", 0) == 0) // as generate's --repair-restarts
       repair_options.restarts = {0, std::atoi(arg.c_str() + 16)};
+    else if (arg.rfind("repair_lbfgs_memory=", 0) == 0)
+      repair_options.lbfgs_memory = std::atoi(arg.c_str() + 20);
     else if (arg == "trace")
       options.iteration_progress = [](const std::string& stage, int it, double value) {
         if (it % 10 == 0) std::printf("%8s %s %d: %.8g\n", "", stage.c_str(), it, value);
@@ -75,10 +78,10 @@ static int run(int argc, char** argv) {
   std::printf("%8s %9s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s %9s %8s\n", "size", "tets", "Mesh_3", "build", "setup",
               "transp", "linear", "project", "refine", "repair", "singul", "total*", "us/tet*", "peak GB");
   std::printf("linear_tolerance %g, energy_tolerance %g, aggregate_size %d; repair: %d restarts in the second round, "
-              "at most %d further rounds and %d released ones\n",
+              "at most %d further rounds and %d released ones, L-BFGS memory %d\n",
               options.linear_tolerance, options.energy_tolerance, options.aggregate_size,
               repair_options.restarts.size() > 1 ? repair_options.restarts[1] : 0, repair_options.max_further_rounds,
-              repair_options.max_released_rounds);
+              repair_options.max_released_rounds, repair_options.lbfgs_memory);
   for (const double size : sizes) {
     CGAL_ext::Tetrahedralize_options mo;
     mo.size = size;
@@ -117,11 +120,13 @@ static int run(int argc, char** argv) {
                 st.seconds_projection, st.seconds_refinement, repair.seconds, t_sing, total,
                 1e6 * total / double(ff.size()), peak_gb());
     std::printf("%8s CG %d (residual %.1e; coarse: %d on %zu aggregates), L-BFGS %d, energy %.4g -> %.4g, %zu singular edges (repair: %zu -> %zu "
-                "non-meshable, %zu rounds, %zu of %zu regions kept), boundary error mean %.3g max %.3g deg\n",
+                "non-meshable, %zu rounds, %zu of %zu regions kept, %zu L-BFGS iterations of %.0f tetrahedra on average), boundary error mean %.3g max %.3g deg\n",
                 "", st.linear_iterations, st.linear_residual, st.coarse_iterations, st.coarse_unknowns / 9,
                 st.refinement_iterations, st.projected_energy,
                 st.smoothness_energy, sing.size(), repair.non_meshable_before, repair.non_meshable_after,
-                repair.rounds, repair.regions_accepted, repair.regions_tried, st.boundary_error_mean_deg, st.boundary_error_max_deg);
+                repair.rounds, repair.regions_accepted, repair.regions_tried, repair.lbfgs_iterations,
+                double(repair.lbfgs_tet_iterations) / double(std::max<std::size_t>(repair.lbfgs_iterations, 1)),
+                st.boundary_error_mean_deg, st.boundary_error_max_deg);
     std::fflush(stdout);
   }
   std::printf("\n* total: from the mesh to the singular edges (triangulation, metric, frame field, repair of\n"

@@ -444,6 +444,8 @@ TEST_CASE("generate meshes a built-in shape with Mesh_3", "[cli][generate]") {
   CHECK(number(report, "/repair/non_meshable_after") == number(report, "/straightening/non_meshable_before"));
   CHECK(number(report, "/repair/non_meshable_after") <= number(report, "/repair/non_meshable_before"));
   CHECK(number(report, "/repair/regions_from_restarts") <= number(report, "/repair/regions_kept"));
+  CHECK(number(report, "/repair/lbfgs_tet_iterations") >= number(report, "/repair/lbfgs_iterations"));
+  CHECK((number(report, "/repair/lbfgs_iterations") > 0) == (number(report, "/repair/regions_tried") > 0));
   for (double c : sing.cell_data.at("curve").values) CHECK(c >= 1);
   CHECK(sing.point_data.at("node").values.size() == sing.number_of_points);
   CHECK(sing.point_data.at("vertex_index").values.size() == sing.number_of_points);

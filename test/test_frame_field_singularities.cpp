@@ -1072,13 +1072,15 @@ TEST_CASE("a restart's start is the relaxed one turned by the seeded rotations, 
   for (std::size_t i = 0; i < ff.size(); ++i) saved[i] = ff.rotation_quaternion(i);
   Frame_field_options starts_only;
   starts_only.max_refinement_iterations = 0; // the start alone
-  auto start = [&](std::uint64_t seed, double angle, int threads, int iterations) {
+  auto start = [&](std::uint64_t seed, double angle, int threads, int iterations, int memory_option = 8,
+                   int memory_given = 0) {
     tbb::global_control c(tbb::global_control::max_allowed_parallelism, threads);
     Frame_field_options o;
     o.max_refinement_iterations = iterations;
+    o.lbfgs_memory = memory_option;
     ff.prepare(o);
     for (std::size_t i = 0; i < ff.size(); ++i) ff.set_rotation(i, saved[i]);
-    ff.reoptimize(region, Frames::Reoptimize_start::relaxed, seed, angle);
+    ff.reoptimize(region, Frames::Reoptimize_start::relaxed, seed, angle, memory_given);
     std::vector<Eigen::Quaterniond> q;
     for (std::size_t i : region) q.push_back(ff.rotation_quaternion(i));
     return q;
@@ -1101,6 +1103,17 @@ TEST_CASE("a restart's start is the relaxed one turned by the seeded rotations, 
   // The whole re-optimisation from a seed is the same bits with 1 and 2 threads.
   const auto one = start(777, max_angle, 1, 1000), two = start(777, max_angle, 2, 1000);
   for (std::size_t k = 0; k < region.size(); ++k) CHECK(one[k].coeffs() == two[k].coeffs());
+  // An L-BFGS memory given to reoptimize() (as the repair's) overrides the
+  // field's option: the bits of a field whose option is that memory.
+  const auto given = start(777, max_angle, 2, 1000, 8, 4), option = start(777, max_angle, 2, 1000, 4, 0);
+  std::size_t same_as_option = 0, same_as_default = 0;
+  for (std::size_t k = 0; k < region.size(); ++k) {
+    same_as_option += given[k].coeffs() == option[k].coeffs();
+    same_as_default += given[k].coeffs() == two[k].coeffs();
+  }
+  CHECK(same_as_option == region.size());
+  CHECK(same_as_default < region.size()); // 4 pairs take another path than 8
+  CHECK_THROWS_AS(ff.reoptimize(region, Frames::Reoptimize_start::current, 0, 0, -1), std::invalid_argument);
 }
 
 TEST_CASE("seeded rotations: a function of the seed and the index, uniform directions and angles",
@@ -1127,6 +1140,7 @@ TEST_CASE("seeded rotations: a function of the seed and the index, uniform direc
 }
 
 TEST_CASE("the repair's restarts find meshable minima on a ball, and are reported", "[singularities][repair]") {
+  std::size_t iterations_without_restarts = 0;
   for (int restarts : {0, 6}) {
     const auto s = computed_ball_field();
     Singularity_repair_options o;
@@ -1144,6 +1158,13 @@ TEST_CASE("the repair's restarts find meshable minima on a ball, and are reporte
     // and Clang -O1 alike; how many edges remain differs in the last bits
     // between the two: 0 and 1).
     CHECK((r.regions_from_restarts > 0) == (restarts > 0));
+    // The work reported: every start iterates, on regions smaller than the mesh;
+    // restarts add to it.
+    CHECK(r.lbfgs_iterations >= 2 * r.batches); // two starts at least per batch
+    CHECK(r.lbfgs_tet_iterations >= r.lbfgs_iterations);
+    CHECK(r.lbfgs_tet_iterations < r.lbfgs_iterations * s->ff->size());
+    if (restarts == 0) iterations_without_restarts = r.lbfgs_iterations;
+    else CHECK(r.lbfgs_iterations > iterations_without_restarts);
   }
 }
 
@@ -1369,4 +1390,5 @@ TEST_CASE("the repair refuses options it cannot use", "[singularities][repair]")
   refuses([](Singularity_repair_options& o) { o.max_released_rounds = -1; });
   refuses([](Singularity_repair_options& o) { o.restart_angle_deg = std::nan(""); });
   refuses([](Singularity_repair_options& o) { o.restart_angle_deg = 200; });
+  refuses([](Singularity_repair_options& o) { o.lbfgs_memory = -1; });
 }

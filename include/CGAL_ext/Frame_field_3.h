@@ -374,9 +374,13 @@ public:
   ///        about a direction uniform on the sphere, by an angle uniform in
   ///        [0, `max_angle`]
   /// \param max_angle the largest angle of those rotations, in radians
+  /// \param lbfgs_memory the (step, gradient change) pairs L-BFGS keeps; 0
+  ///        takes `Frame_field_options::lbfgs_memory`
   /// \returns the L-BFGS iterations
+  /// \throws std::invalid_argument for a negative `lbfgs_memory`
   int reoptimize(const std::vector<std::size_t>& tets, Reoptimize_start start = Reoptimize_start::relaxed,
-                 std::uint64_t seed = 0, double max_angle = 0) {
+                 std::uint64_t seed = 0, double max_angle = 0, int lbfgs_memory = 0) {
+    if (lbfgs_memory < 0) throw std::invalid_argument("Frame_field_3::reoptimize: lbfgs_memory must not be negative");
     const std::size_t m = tets.size();
     if (m == 0) return 0;
     start_frames(tets, start);
@@ -388,7 +392,7 @@ public:
     int evaluations = 0;
     bool limit = false;
     const Marked marked(*this, tets);
-    return lbfgs(marked.set, evaluations, limit, nullptr);
+    return lbfgs(marked.set, evaluations, limit, nullptr, lbfgs_memory > 0 ? lbfgs_memory : opt_.lbfgs_memory);
   }
 
   /// The rotation `R_i` as the unit quaternion the optimiser holds (any
@@ -686,7 +690,7 @@ private:
 
   void refine();
 
-  int lbfgs(const Active_set& set, int& evaluations, bool& limit, const char* stage);
+  int lbfgs(const Active_set& set, int& evaluations, bool& limit, const char* stage, int memory);
 
   void measure() {
     double sum = 0, mx = 0;

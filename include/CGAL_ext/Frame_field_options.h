@@ -257,6 +257,16 @@ struct Singularity_repair_options {
   int further_restarts = 24;
   /// The largest angle of a restart's turns, in degrees.
   double restart_angle_deg = 90;
+  /// The (step, gradient change) pairs that the L-BFGS of the regions'
+  /// re-optimisations keeps (`Frame_field_3::reoptimize()`); 0 takes the
+  /// field's `Frame_field_options::lbfgs_memory` (8). Measured
+  /// (doc/benchmarks.md, "The repair's L-BFGS memory"): from the restarts'
+  /// scrambled starts L-BFGS needs as many iterations with 4 pairs as with
+  /// 8 (103 and 107 per restart on TetGen's anchor), and each costs a fifth
+  /// less (the two-loop recursion makes two passes over the region per
+  /// pair); with 4, no defect is left on the 13 meshes of issue 15's
+  /// benchmark, against three with 8.
+  int lbfgs_memory = 4;
   /// If set, called after each round with its number (from 1), the radius,
   /// the regions tried and accepted, and the non-meshable edges and nodes left.
   std::function<void(int round, int radius, std::size_t tried, std::size_t accepted, std::size_t left)> progress;

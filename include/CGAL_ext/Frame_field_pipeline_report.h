@@ -98,6 +98,8 @@ inline nlohmann::ordered_json pipeline_repair_json(const std::optional<Singulari
           {"regions_released", fix->regions_released},
           {"tets_released", fix->tets_released},
           {"tets_changed", fix->tets_changed},
+          {"lbfgs_iterations", fix->lbfgs_iterations},
+          {"lbfgs_tet_iterations", fix->lbfgs_tet_iterations},
           {"energy_before", fix->energy_before},
           {"energy_after", fix->energy_after}};
 }

@@ -58,6 +58,12 @@ struct Singularity_repair_report {
   /// Tetrahedra in the regions kept.
   std::size_t tets_changed = 0;
   /** @{ */
+  /// L-BFGS iterations of all the re-optimisations, and their sum over the
+  /// tetrahedra re-optimised (a measure of the work, independent of the
+  /// machine).
+  std::size_t lbfgs_iterations = 0, lbfgs_tet_iterations = 0;
+  /** @} */
+  /** @{ */
   /// Smoothness energy before and after.
   double energy_before = 0, energy_after = 0;
   /** @} */
@@ -396,7 +402,10 @@ private:
         }
         start = Start::current;
       }
-      ff_.reoptimize(open_tets, start, seed, options_.restart_angle_deg * M_PI / 180);
+      const std::size_t iterations = std::size_t(
+          ff_.reoptimize(open_tets, start, seed, options_.restart_angle_deg * M_PI / 180, options_.lbfgs_memory));
+      report_.lbfgs_iterations += iterations;
+      report_.lbfgs_tet_iterations += iterations * open_tets.size();
       matchings_.update(ff_, open_tets);
       const std::vector<std::size_t> now = count(examine());
       for (std::size_t r : open) {
@@ -520,7 +529,8 @@ private:
 /// \param options the options
 /// \returns what was done
 /// \throws std::invalid_argument for a radius below 1, a negative count of
-///         restarts or rounds, or a restart angle outside [0, 180] degrees
+///         restarts or rounds, a negative L-BFGS memory, or a restart angle
+///         outside [0, 180] degrees
 template <class Frame_field>
 Singularity_repair_report repair_singularities(Frame_field& ff, const Singularity_repair_options& options = {}) {
   auto positive = [](const std::vector<int>& radii) {
@@ -529,8 +539,9 @@ Singularity_repair_report repair_singularities(Frame_field& ff, const Singularit
   if (!positive(options.radii) || !positive(options.further_radii))
     throw std::invalid_argument("repair_singularities: region radii must be at least 1");
   if (options.max_further_rounds < 0 || options.max_released_rounds < 0 || options.further_restarts < 0 ||
+      options.lbfgs_memory < 0 ||
       std::any_of(options.restarts.begin(), options.restarts.end(), [](int r) { return r < 0; }))
-    throw std::invalid_argument("repair_singularities: restarts and rounds must not be negative");
+    throw std::invalid_argument("repair_singularities: restarts, rounds and lbfgs_memory must not be negative");
   if (!(options.restart_angle_deg >= 0 && options.restart_angle_deg <= 180))
     throw std::invalid_argument("repair_singularities: restart_angle_deg must be in [0, 180]");
   CGAL::Real_timer timer;

@@ -143,16 +143,19 @@ inline void Frame_field_3<Metric_field>::refine() {
   Active_set all;
   all.n = size();
   int evaluations = 0;
-  stats_.refinement_iterations = lbfgs(all, evaluations, stats_.refinement_iteration_limit_reached, "refinement");
+  stats_.refinement_iterations =
+      lbfgs(all, evaluations, stats_.refinement_iteration_limit_reached, "refinement", opt_.lbfgs_memory);
   stats_.energy_evaluations = evaluations;
 }
 
 // L-BFGS on the rotations of the active tetrahedra, until the energy
 // converges (see `energy_tolerance`). Returns the iterations; `evaluations`
 // gets the energy evaluations, `limit` whether the iteration bound stopped
-// it. `stage` names the iterations for the progress callback (or null).
+// it. `stage` names the iterations for the progress callback (or null);
+// `memory` is the number of pairs kept.
 template <class Metric_field>
-inline int Frame_field_3<Metric_field>::lbfgs(const Active_set& set, int& evaluations, bool& limit, const char* stage) {
+inline int Frame_field_3<Metric_field>::
+    lbfgs(const Active_set& set, int& evaluations, bool& limit, const char* stage, int memory) {
   const std::size_t n = set.n;
   evaluations = 0;
   limit = false;
@@ -170,7 +173,7 @@ inline int Frame_field_3<Metric_field>::lbfgs(const Active_set& set, int& evalua
   for (std::size_t k = 0; k < n; ++k) q_old[k] = q_[set.tet(k)];
   internal::Lbfgs_settings settings;
   settings.max_iterations = opt_.max_refinement_iterations;
-  settings.memory = opt_.lbfgs_memory;
+  settings.memory = memory;
   settings.energy_tolerance = opt_.energy_tolerance;
   settings.floor_energy = 1e-14 * std::max(e_.total_weight, 1e-300);
   const internal::Lbfgs_outcome out = internal::lbfgs_on_rotations(
