@@ -262,7 +262,7 @@ struct Singularity_repair_options {
   /// field's `Frame_field_options::lbfgs_memory` (8). Measured
   /// (doc/benchmarks.md, "The repair's L-BFGS memory"): from the restarts'
   /// scrambled starts L-BFGS needs as many iterations with 4 pairs as with
-  /// 8 (103 and 107 per restart on TetGen's anchor), and each costs a fifth
+  /// 8 (103 and 107 per start on TetGen's anchor), and each costs a fifth
   /// less (the two-loop recursion makes two passes over the region per
   /// pair); with 4, no defect is left on the 13 meshes of issue 15's
   /// benchmark, against three with 8.
