@@ -27,6 +27,10 @@
 // (mesh.mesh, frames.fra at hexes of H times the bounding-box diagonal,
 // default 1/15, frames.perm) into a temporary directory, run through both,
 // and the hex mesh measured by scripts/hex_mesh_quality.py (python3): hexes,
+// their sizes against the edge h asked for (the hexes made over the tet
+// volume / h^3 that hexes of edge h would need, and the median over the
+// hexes of the cube root of their volume over h: a map that coarsens, with
+// hexes larger than asked, shows there even where the coverage is high),
 // scaled Jacobian min and median, hexes with a scaled Jacobian <= 0, and the
 // coverage (hex volume over tet volume), with its ceiling: what hexes of the
 // mesh's boundary edge length, and hexes of the size asked for, can cover at
@@ -36,7 +40,7 @@
 // over H times 0.97 to 1.03 (the same field, its gradients scaled): the
 // integer-grid map of a field with defects changes a lot with a 1% change of
 // size, so one run is one sample. The row then gives the median, least and
-// largest coverage and hex count, the median ceiling, the least scaled Jacobian, the most
+// largest coverage and hex count, the median size ratios, the median ceiling, the least scaled Jacobian, the most
 // inverted hexes, and how many runs meet issue 15's target (every hex's
 // scaled Jacobian > 0, coverage >= 0.99), flagged out of reach where the
 // ceiling at the sizes asked for is below 0.99.
@@ -127,6 +131,10 @@ struct Hex_run {
   // The coverage the boundary's curvature allows (hex_mesh_quality.py): with
   // the hex mesh's boundary edges, and with edges of the hex size asked for.
   double ceiling = 0, ceiling_at_h = 0;
+  // The sizes against the edge h asked for: the median over the hexes of
+  // the cube root of their volume over h, and the hexes made over those
+  // that hexes of edge h would need to fill the volume.
+  double size_ratio = 0, count_ratio = 0;
   bool meets_target() const { return error.empty() && inverted == 0 && coverage >= 0.99; }
 };
 
@@ -236,6 +244,13 @@ Hex_run hex_pipeline(const Hex_tools& tools, const CGAL_ext::IO::Medit_mesh& mes
         const auto at = c->find("at_hex_size");
         if (at != c->end() && at->is_object()) q.ceiling_at_h = json_number(*at, "estimate");
       }
+      q.size_ratio = q.count_ratio = std::nan("");
+      const auto z = j.find("size");
+      if (z != j.end() && z->is_object()) {
+        const auto e = z->find("edge_ratio");
+        if (e != z->end() && e->is_object()) q.size_ratio = json_number(*e, "median");
+        q.count_ratio = json_number(*z, "hexes_over_expected");
+      }
     }
   }
   if (q.error.empty()) fs::remove_all(dir);
@@ -335,13 +350,13 @@ void print_row(const std::string& name, const char* variant, const Quality& q, d
     if (!r.error.empty())
       std::printf("%-22s %-12s   hex pipeline: %s\n", name.c_str(), variant, r.error.c_str());
     else
-      std::printf("%-22s %-12s   hexes %zu, scaled Jacobian min %.3f median %.3f, <= 0: %zu, coverage %.4f "
-                  "(ceiling %.4f, at the size asked for %.4f%s)%s\n",
-                  name.c_str(), variant, r.hexes, r.sj_min, r.sj_median, r.inverted, r.coverage, r.ceiling,
-                  r.ceiling_at_h, r.ceiling_at_h < 0.99 ? ": 0.99 out of reach" : "",
+      std::printf("%-22s %-12s   hexes %zu (%.2f of the count asked for, median size %.2f h), scaled Jacobian "
+                  "min %.3f median %.3f, <= 0: %zu, coverage %.4f (ceiling %.4f, at the size asked for %.4f%s)%s\n",
+                  name.c_str(), variant, r.hexes, r.count_ratio, r.size_ratio, r.sj_min, r.sj_median, r.inverted,
+                  r.coverage, r.ceiling, r.ceiling_at_h, r.ceiling_at_h < 0.99 ? ": 0.99 out of reach" : "",
                   r.mip_failed ? " (MIP)" : "");
   } else if (q.hex_runs.size() > 1) {
-    std::vector<double> coverage, hexes, ceiling, ceiling_at_h;
+    std::vector<double> coverage, hexes, ceiling, ceiling_at_h, size_ratio, count_ratio;
     double sj_min = 1;
     std::size_t inverted = 0, met = 0, mip = 0;
     for (const Hex_run& r : q.hex_runs) {
@@ -351,6 +366,8 @@ void print_row(const std::string& name, const char* variant, const Quality& q, d
       if (std::isfinite(r.ceiling)) ceiling.push_back(r.ceiling);
       if (std::isfinite(r.ceiling_at_h)) ceiling_at_h.push_back(r.ceiling_at_h);
       hexes.push_back(double(r.hexes));
+      if (std::isfinite(r.size_ratio)) size_ratio.push_back(r.size_ratio);
+      if (std::isfinite(r.count_ratio)) count_ratio.push_back(r.count_ratio);
       sj_min = std::min(sj_min, r.sj_min);
       inverted = std::max(inverted, r.inverted);
       met += r.meets_target();
@@ -367,11 +384,13 @@ void print_row(const std::string& name, const char* variant, const Quality& q, d
     };
     const double c = ceiling.empty() ? std::nan("") : median(ceiling);
     const double c_at_h = ceiling_at_h.empty() ? std::nan("") : median(ceiling_at_h);
-    std::printf("%-22s %-12s   %zu sizes, %zu hex meshes: hexes %.0f (%.0f-%.0f), coverage %.4f (%.4f-%.4f), "
-                "ceiling %.4f (at the sizes asked for %.4f), scaled Jacobian min %.3f, most <= 0: %zu, "
-                "target met %zu of %zu%s%s\n",
+    const double size = size_ratio.empty() ? std::nan("") : median(size_ratio);
+    const double count = count_ratio.empty() ? std::nan("") : median(count_ratio);
+    std::printf("%-22s %-12s   %zu sizes, %zu hex meshes: hexes %.0f (%.0f-%.0f; %.2f of the count asked for, "
+                "median size %.2f h), coverage %.4f (%.4f-%.4f), ceiling %.4f (at the sizes asked for %.4f), "
+                "scaled Jacobian min %.3f, most <= 0: %zu, target met %zu of %zu%s%s\n",
                 name.c_str(), variant, n, coverage.size(), median(hexes),
-                *std::min_element(hexes.begin(), hexes.end()), *std::max_element(hexes.begin(), hexes.end()),
+                *std::min_element(hexes.begin(), hexes.end()), *std::max_element(hexes.begin(), hexes.end()), count, size,
                 median(coverage), *std::min_element(coverage.begin(), coverage.end()),
                 *std::max_element(coverage.begin(), coverage.end()), c, c_at_h, sj_min, inverted, met, n,
                 c_at_h < 0.99 ? " (coverage 0.99 out of reach at these sizes)" : "",

@@ -2,12 +2,17 @@
 """Quality report for a hexahedral mesh written by HexEx (OpenVolumeMesh ASCII).
 
 Usage:
-  python3 scripts/hex_mesh_quality.py HEX.ovm [--tets TET.mesh] [--json] [--vtu OUT.vtu]
+  python3 scripts/hex_mesh_quality.py HEX.ovm [--tets TET.mesh] [--hex-size L] [--json] [--vtu OUT.vtu]
 
 Python 3 standard library only.  Reports the hex count (and any other cells),
 the scaled Jacobian, the total hex volume, with --tets the volume of the input
 tet mesh (Medit .mesh) and the coverage = hex volume / tet volume, edge lengths
-(overall and per world axis) and the per-hex edge families.  --json prints the
+(overall and per world axis) and the per-hex edge families.  With --hex-size L
+(the hex edge asked for, as `generate --hex-size L` asks for it with the
+identity metric): the hexes' sizes, per hex the cube root of its volume over
+L (median, range, the fraction within 0.8-1.25), and with --tets the hexes
+that hexes of edge L would need to fill the tet mesh's volume, against the
+hexes made: a map that coarsens shows there even where the coverage is high.  --json prints the
 same as a JSON object; --vtu also writes the hexes as a VTK XML unstructured
 grid (VTK_HEXAHEDRON cells, cell data `scaled_jacobian`) for ParaView.
 Errors (missing or malformed file) print one line naming the file, exit code 1;
@@ -402,6 +407,20 @@ def coverage_ceiling(l2, turning, tet_volume):
     return max(0.0, 1 - l2 / 12 * turning["integral_2H"] / tet_volume)
 
 
+def size_report(vols, hex_size, tet_volume=None):
+    """The hexes' sizes against the edge L asked for (--hex-size): per hex
+    the cube root of its volume over L (1: a hex of the volume asked for,
+    whatever its shape; the edge families give the shape), and with the tet
+    mesh's volume the hexes that hexes of edge L would need to fill it."""
+    ratios = [math.copysign(abs(v) ** (1.0 / 3.0), v) / hex_size for v in vols]
+    r = {"hex_size": hex_size, "edge_ratio": summary(ratios),
+         "within_25_percent": sum(0.8 <= x <= 1.25 for x in ratios) / len(ratios)}
+    if tet_volume is not None:
+        r["expected_hexes"] = tet_volume / hex_size ** 3
+        r["hexes_over_expected"] = len(vols) / r["expected_hexes"] if tet_volume > 0 else None
+    return r
+
+
 def evaluate(hex_path, tet_path=None, feature_angle_deg=40.0, hex_size=None):
     """The report as a dict, plus the hexes (VTK order) and their scaled Jacobians."""
     points, cells = read_ovm(hex_path)
@@ -456,6 +475,9 @@ def evaluate(hex_path, tet_path=None, feature_angle_deg=40.0, hex_size=None):
         if hex_size is not None:
             r["coverage_ceiling"]["at_hex_size"] = {
                 "hex_size": hex_size, "estimate": coverage_ceiling(hex_size ** 2, turning, tv)}
+
+    if hex_size is not None:
+        r["size"] = size_report(vols, hex_size, r["tets"]["volume"] if tet_path else None)
 
     cos_max = math.cos(math.radians(AXIS_ANGLE_DEG))
     lengths, by_axis = [], [[], [], []]
@@ -531,6 +553,15 @@ def print_text(r, out):
         if "at_hex_size" in c:
             w("coverage ceiling for boundary quads of edge %s (--hex-size) %s\n" % (
                 g(c["at_hex_size"]["hex_size"]), g(c["at_hex_size"]["estimate"])))
+    if "size" in r:
+        z = r["size"]
+        w("size against --hex-size %s: cube root of hex volume / %s: min %s  median %s  mean %s  max %s;\n"
+          "  %s of the hexes within 0.8-1.25%s\n" % (
+              g(z["hex_size"]), g(z["hex_size"]), g(z["edge_ratio"]["min"]), g(z["edge_ratio"]["median"]),
+              g(z["edge_ratio"]["mean"]), g(z["edge_ratio"]["max"]), g(z["within_25_percent"]),
+              "; %d hexes for %s expected (tet volume / hex size^3): %s of them" % (
+                  r["hexahedra"], g(z["expected_hexes"]), g(z["hexes_over_expected"]))
+              if "expected_hexes" in z else ""))
     e, a = r["edge_length"], r["edge_length_by_axis"]
     w("edge length (%d edges): mean %s  median %s  min %s  max %s\n" % (
         e["count"], g(e["mean"]), g(e["median"]), g(e["min"]), g(e["max"])))
@@ -556,7 +587,8 @@ def main(argv=None):
                     help="for the coverage ceiling: boundary edges turning by more than this are creases "
                          "that hexes follow (default 40, generate's)")
     ap.add_argument("--hex-size", metavar="L", type=float,
-                    help="also give the coverage ceiling for boundary quads of edge L (the hex size asked for)")
+                    help="the hex edge asked for (a constant isotropic metric I / L^2): also give the hexes' "
+                         "sizes against it and the coverage ceiling for boundary quads of edge L")
     ap.add_argument("--json", action="store_true", help="print a JSON object instead of text")
     ap.add_argument("--vtu", metavar="OUT.vtu", help="also write the hexes as VTK XML with scaled_jacobian")
     args = ap.parse_args(argv)

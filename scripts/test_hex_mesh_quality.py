@@ -344,6 +344,37 @@ class HexMeshQualityTest(unittest.TestCase):
             self.assertAlmostEqual(f[name]["mean"], h, places=14)
         self.assertAlmostEqual(f["longest_over_shortest"]["max"], 4.0, places=12)
 
+    def test_sizes_against_the_hex_size_asked_for(self):
+        points, hexes = grid(2, 1, 1)
+        tets = self.path("box.mesh", BOX_MESH)
+        ovm = self.ovm(points, hexes)
+        # unit cubes asked for: each hex is one, the box needs 2
+        z = hmq.evaluate(ovm, tets, hex_size=1.0)[0]["size"]
+        self.assertAlmostEqual(z["edge_ratio"]["median"], 1.0, places=14)
+        self.assertEqual(z["within_25_percent"], 1.0)
+        self.assertAlmostEqual(z["expected_hexes"], 2.0, places=14)
+        self.assertAlmostEqual(z["hexes_over_expected"], 1.0, places=14)
+        # edges of 0.5 asked for: hexes twice as long, an eighth of the count
+        z = hmq.evaluate(ovm, tets, hex_size=0.5)[0]["size"]
+        self.assertAlmostEqual(z["edge_ratio"]["min"], 2.0, places=14)
+        self.assertAlmostEqual(z["edge_ratio"]["max"], 2.0, places=14)
+        self.assertEqual(z["within_25_percent"], 0.0)
+        self.assertAlmostEqual(z["hexes_over_expected"], 2 / 16, places=14)
+        # the volume decides, not the shape: a 0.2 x 0.1 x 0.4 box is 0.2 cubed
+        z = hmq.evaluate(self.ovm(*grid(2, 3, 1, 0.2, 0.1, 0.4)), hex_size=0.2)[0]["size"]
+        self.assertAlmostEqual(z["edge_ratio"]["median"], 1.0, places=12)
+        self.assertNotIn("expected_hexes", z)  # no tet mesh, no count
+        # a hex of twice the volume next to one of half: 2^(1/3) and 2^(-1/3), 1.26 and 0.79
+        points = [({0: 0.0, 1: 0.5, 2: 2.5}[x], y, z) for x, y, z in grid(2, 1, 1)[0]]
+        z = hmq.evaluate(self.ovm(points, hexes), hex_size=1.0)[0]["size"]
+        self.assertAlmostEqual(z["edge_ratio"]["min"], 0.5 ** (1 / 3), places=12)
+        self.assertAlmostEqual(z["edge_ratio"]["max"], 2.0 ** (1 / 3), places=12)
+        self.assertEqual(z["within_25_percent"], 0.0)
+        rc, text, err = self.run_main(self.ovm(*grid(2, 1, 1)), "--tets", tets, "--hex-size", "0.5")
+        self.assertEqual((rc, err), (0, ""))
+        self.assertIn("cube root of hex volume / 0.5: min 2  median 2", text)
+        self.assertIn("2 hexes for 16 expected", text)
+
     def test_rotated_edges_leave_the_axis_cones(self):
         t = math.radians(40)  # x and y edges 40 deg off their axes: counted for none
         points, hexes = grid(1, 1, 1)
