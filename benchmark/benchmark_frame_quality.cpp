@@ -379,13 +379,12 @@ void print_row(const std::string& name, const char* variant, const Quality& q, d
       return;
     }
     auto median = [](std::vector<double> v) {
+      if (v.empty()) return std::nan(""); // no run gave the figure
       std::sort(v.begin(), v.end());
       return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
     };
-    const double c = ceiling.empty() ? std::nan("") : median(ceiling);
-    const double c_at_h = ceiling_at_h.empty() ? std::nan("") : median(ceiling_at_h);
-    const double size = size_ratio.empty() ? std::nan("") : median(size_ratio);
-    const double count = count_ratio.empty() ? std::nan("") : median(count_ratio);
+    const double c = median(ceiling), c_at_h = median(ceiling_at_h);
+    const double size = median(size_ratio), count = median(count_ratio);
     std::printf("%-22s %-12s   %zu sizes, %zu hex meshes: hexes %.0f (%.0f-%.0f; %.2f of the count asked for, "
                 "median size %.2f h), coverage %.4f (%.4f-%.4f), ceiling %.4f (at the sizes asked for %.4f), "
                 "scaled Jacobian min %.3f, most <= 0: %zu, target met %zu of %zu%s%s\n",
