@@ -89,6 +89,29 @@ TEST_CASE("identity metric on a box: axis-aligned frames, zero energy, no singul
   CHECK(st.hard_two_axes > 0); // the box's edges fix two axes
 }
 
+TEST_CASE("a second compute() with other set-up options redoes the set-up: the same as a fresh field", "[frame_field]") {
+  auto mesh = make_mesh(testing::kuhn_grid(4, 3, 3, 0.5));
+  const Field field(mesh->tr, Eigen::Matrix3d::Identity().eval());
+  Frame_field_options no_features;
+  no_features.feature_angle_deg = 180;
+  Frame_field_options soft;
+  soft.hard_boundary = false;
+  Frames reused(field);
+  REQUIRE(reused.compute(no_features).feature_edges == 0);
+  for (const Frame_field_options& o : {Frame_field_options(), soft, no_features}) {
+    const Frame_field_statistics st = reused.compute(o);
+    Frames fresh(field);
+    const Frame_field_statistics& expected = fresh.compute(o);
+    CHECK(st.feature_edges == expected.feature_edges);
+    CHECK(st.hard_two_axes == expected.hard_two_axes);
+    CHECK(st.hard_one_axis == expected.hard_one_axis);
+    CHECK(st.smoothness_energy == expected.smoothness_energy);
+    for (std::size_t i = 0; i < fresh.size(); ++i) REQUIRE(reused.rotation(i) == fresh.rotation(i));
+  }
+  CHECK(Frames(field).compute().feature_edges == 4 * (4 + 3 + 3)); // the box's 12 edges, in mesh edges
+  CHECK(Frames(field).compute(soft).hard_two_axes == 0);
+}
+
 TEST_CASE("constant anisotropic metric diag(1,16,4): F = A^-1 up to the octahedral group", "[frame_field]") {
   auto mesh = make_mesh(testing::kuhn_grid(3, 3, 3, 1.0));
   const Eigen::Matrix3d g = Eigen::Vector3d(1, 16, 4).asDiagonal();

@@ -174,11 +174,17 @@ public:
 
   /// The first two stages of `compute()`: the geometry, weights and boundary
   /// data, and the face transports. `compute()` calls it; call it directly
-  /// only before `set_rotations()`. Does nothing if already done.
-  /// \param options the options (boundary weight and transport tolerance are used)
+  /// only before `set_rotations()`. Does nothing if already done with the
+  /// same set-up options (those listed below); redoes both stages if any of
+  /// them changed, so that a second `compute()` with, say, another feature
+  /// angle uses it.
+  /// \param options the options; the set-up uses `boundary_weight`,
+  ///        `hard_boundary`, `feature_angle_deg` and `crease_split_deg`, the
+  ///        transports `transport_tolerance` and `transport_scheme`
   void prepare(const Frame_field_options& options = {}) {
     opt_ = options;
-    if (prepared_) return;
+    if (prepared_ && same_set_up(prepared_with_, options)) return;
+    prepared_with_ = options;
     Timer t;
     e_.set_up(opt_, stats_);
     stats_.seconds_setup = t.lap();
@@ -692,6 +698,13 @@ private:
 
   int lbfgs(const Active_set& set, int& evaluations, bool& limit, const char* stage, int memory);
 
+  // Whether two option sets give the same set-up and face transports.
+  static bool same_set_up(const Frame_field_options& a, const Frame_field_options& b) {
+    return a.boundary_weight == b.boundary_weight && a.hard_boundary == b.hard_boundary &&
+           a.feature_angle_deg == b.feature_angle_deg && a.crease_split_deg == b.crease_split_deg &&
+           a.transport_tolerance == b.transport_tolerance && a.transport_scheme == b.transport_scheme;
+  }
+
   void measure() {
     double sum = 0, mx = 0;
     for (const Boundary_face& b : e_.boundary) {
@@ -711,6 +724,7 @@ private:
   }
 
   Frame_field_options opt_;
+  Frame_field_options prepared_with_; // the options of the last set-up
   Frame_field_statistics stats_;
   Energy e_;
   std::vector<Sh_vector> s_;
