@@ -124,14 +124,15 @@ TEST_CASE("bad files give one clear error naming file and line", "[medit][bad-in
       read_medit_mesh("/nonexistent/dir/x.mesh");
       FAIL("no error");
     } catch (const Input_error& e) {
-      CHECK(std::string(e.what()) == "/nonexistent/dir/x.mesh: cannot open the file for reading");
+      CHECK(std::string(e.what()) == "/nonexistent/dir/x.mesh: cannot open the file for reading: No such file or directory");
     }
   }
   SECTION("empty file") { CHECK(read_error("empty.mesh", "  \n\n").problem() == "the file is empty"); }
   SECTION("garbage") {
     const Input_error e = read_error("garbage.mesh", "\x7f" "ELF\x02\x01 binary junk\n");
     CHECK(e.line() == 1);
-    CHECK(e.problem().find("unknown keyword") != std::string::npos);
+    CHECK(e.problem().find("binary data where a keyword was expected") != std::string::npos);
+    CHECK(read_error("word.mesh", "Dimension 3\nVerticies\n").problem() == "unknown keyword 'Verticies'");
   }
   SECTION("truncated vertex section") {
     const Input_error e = read_error("trunc.mesh", "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 1\n1 0 0 1\n0 1");
@@ -139,6 +140,7 @@ TEST_CASE("bad files give one clear error naming file and line", "[medit][bad-in
   }
   SECTION("truncated inside a record") {
     const Input_error e = read_error("trunc2.mesh", "Dimension 3\nVertices\n2\n0 0 0 1\n1 0 0 1\nTetrahedra\n1\n1 2 3\n");
+    CHECK(e.element() == "tetrahedron 1");
     CHECK(e.problem() == "unexpected end of file: expected a vertex index (truncated file?)");
   }
   SECTION("counts that do not match the records") {
@@ -186,6 +188,12 @@ TEST_CASE("bad files give one clear error naming file and line", "[medit][bad-in
     CHECK(read_error("inf.mesh", "Dimension 3\nVertices\n1\n0 -inf 0 1\n").problem().find("not finite") != std::string::npos);
     CHECK(read_error("ovf.mesh", "Dimension 3\nVertices\n1\n0 1e999 0 1\n").problem().find("overflows") != std::string::npos);
   }
+  SECTION("a coordinate below the smallest double reads as 0, as strtod reads it") {
+    const Medit_mesh m = read_medit_mesh(temp_file("underflow.mesh", "Dimension 3\nVertices\n4\n0 1e-400 -1e-400 1\n"
+                                                                     "1 0 0 1\n0 1 0 1\n0 0 1 1\nTetrahedra\n1\n1 2 3 4 1\n"));
+    CHECK(m.vertices[0][1] == 0.0);
+    CHECK(m.vertices[0][2] == 0.0);
+  }
   SECTION("a 2D mesh") {
     const Input_error e = read_error("2d.mesh", "MeshVersionFormatted 2\nDimension 2\nVertices\n3\n0 0 1\n1 0 1\n0 1 1\n");
     CHECK(e.line() == 2);
@@ -194,6 +202,44 @@ TEST_CASE("bad files give one clear error naming file and line", "[medit][bad-in
   SECTION("a surface mesh without tetrahedra") {
     const Input_error e = read_error("surf.mesh", "Dimension 3\nVertices\n3\n0 0 0 1\n1 0 0 1\n0 1 0 1\nTriangles\n1\n1 2 3 1\nEnd\n");
     CHECK(e.problem().find("no Tetrahedra section") != std::string::npos);
+  }
+  SECTION("an index out of range in Triangles and Edges names the line") {
+    const std::string head = "Dimension 3\nVertices\n4\n0 0 0 1\n1 0 0 1\n0 1 0 1\n0 0 1 1\nTetrahedra\n1\n1 2 3 4 1\n";
+    const Input_error t = read_error("trirange.mesh", head + "Triangles\n2\n1 2 3 1\n1 2 9 1\n");
+    CHECK(t.line() == 14);
+    CHECK(t.element() == "triangle 2");
+    const Input_error e = read_error("edgerange.mesh", head + "Edges\n1\n 7 1 1\n");
+    CHECK(e.line() == 13);
+    CHECK(e.element() == "edge 1");
+  }
+  SECTION("a reference beyond a 32-bit int is not narrowed") {
+    const Input_error t = read_error("bigref.mesh", "Dimension 3\nVertices\n4\n0 0 0 1\n1 0 0 1\n0 1 0 1\n0 0 1 1\n"
+                                                    "Tetrahedra\n1\n1 2 3 4 4294967297\n");
+    CHECK(t.line() == 10);
+    CHECK(t.element() == "tetrahedron 1");
+    CHECK(t.problem() == "the reference 4294967297 is out of the range of a 32-bit int");
+    const Input_error v = read_error("bigvref.mesh", "Dimension 3\nVertices\n1\n0 0 0 -4294967295\n");
+    CHECK(v.element() == "vertex 1");
+    CHECK(v.problem().find("out of the range of a 32-bit int") != std::string::npos);
+    CHECK(read_error("wordref.mesh", "Dimension 3\nVertices\n1\n0 0 0 x\n").element() == "vertex 1");
+  }
+  SECTION("hexahedra, prisms and pyramids are refused, not dropped") {
+    const std::string head = "Dimension 3\nVertices\n4\n0 0 0 1\n1 0 0 1\n0 1 0 1\n0 0 1 1\nTetrahedra\n1\n1 2 3 4 1\n";
+    for (const char* section : {"Hexahedra", "Prisms", "Pyramids"}) {
+      INFO(section);
+      const Input_error e = read_error("mixed.mesh", head + section + "\n1\n1 2 3 4 1 2 3 4 1\n");
+      CHECK(e.line() == 12);
+      CHECK(e.problem().find(std::string("1 ") + section + " (" + section + " section): only tetrahedral meshes") == 0);
+      CHECK(read_medit_mesh(temp_file("none.mesh", head + section + "\n0\n")).tetrahedra.size() == 1);
+    }
+  }
+  SECTION("high-order sections and a second Triangles or Edges section") {
+    const std::string head = "Dimension 3\nVertices\n4\n0 0 0 1\n1 0 0 1\n0 1 0 1\n0 0 1 1\nTetrahedra\n1\n1 2 3 4 1\n";
+    CHECK(read_error("p2.mesh", head + "EdgesP2\n0\n").problem() ==
+          "section 'EdgesP2': high-order elements are not read (mesh at order 1)");
+    CHECK(read_error("tri2.mesh", head + "Triangles\n1\n1 2 3 1\nTriangles\n1\n1 2 4 1\n").problem() ==
+          "a second Triangles section");
+    CHECK(read_error("edge2.mesh", head + "Edges\n0\nEdges\n0\n").problem() == "a second Edges section");
   }
   SECTION("non-integer index") {
     const Input_error e = read_error("float.mesh", "Dimension 3\nVertices\n4\n0 0 0 1\n1 0 0 1\n0 1 0 1\n0 0 1 1\n"

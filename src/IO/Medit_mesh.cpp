@@ -5,7 +5,10 @@
 
 #include "write_file_atomically.h"
 
+#include <algorithm>
 #include <cctype>
+#include <cstdint>
+#include <limits>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -25,30 +28,48 @@ constexpr Skipped_section skipped_sections[] = {
     {"Corners", 1},          {"RequiredVertices", 1},   {"Ridges", 1},
     {"RequiredEdges", 1},    {"RequiredTriangles", 1},  {"RequiredQuadrilaterals", 1},
     {"RequiredTetrahedra", 1}, {"RequiredHexahedra", 1}, {"Quadrilaterals", 5},
-    {"Hexahedra", 9},        {"Prisms", 7},             {"Pyramids", 6},
     {"Normals", 3},          {"NormalAtVertices", 2},   {"Tangents", 3},
     {"TangentAtVertices", 2}, {"NormalAtTriangleVertices", 3}, {"NormalAtQuadrilateralVertices", 3},
     {"TangentAtEdgeVertices", 3}, {"Crack", 2}, {"Identifier", 0}, {"Geometry", 0}};
 
-// Reads `count` records of N vertex indices and a reference, checking each index.
+// A reference as an int, or an error naming the element: references wider
+// than int would otherwise come back changed in the written mesh.
+int reference_of(Medit_tokenizer& tk, const std::string& element, const char* what) {
+  std::int64_t r = 0;
+  try {
+    r = tk.read_int(what);
+  } catch (const Input_error& e) {
+    throw Input_error(tk.path(), e.line(), element, e.problem());
+  }
+  if (r < std::numeric_limits<int>::min() || r > std::numeric_limits<int>::max())
+    tk.fail(element, std::string(what) + " " + std::to_string(r) + " is out of the range of a 32-bit int");
+  return static_cast<int>(r);
+}
+
+// Reads `count` records of N vertex indices and a reference, checking each
+// index's sign (the upper bound is checked once all sections are read).
 template <std::size_t N>
 void read_cells(Medit_tokenizer& tk, const char* section, const char* element, std::size_t count,
                 std::vector<std::array<std::size_t, N>>& cells, std::vector<int>& refs,
-                std::vector<std::size_t>* lines) {
+                std::vector<std::size_t>& lines) {
   cells.resize(count);
   refs.resize(count);
-  if (lines) lines->resize(count);
+  lines.resize(count);
   for (std::size_t i = 0; i < count; ++i) {
+    const std::string name = std::string(element) + " " + std::to_string(i + 1);
     for (std::size_t j = 0; j < N; ++j) {
-      const std::int64_t v = tk.read_int("a vertex index");
-      if (j == 0 && lines) (*lines)[i] = tk.line();
+      std::int64_t v = 0;
+      try {
+        v = tk.read_int("a vertex index");
+      } catch (const Input_error& e) {
+        throw Input_error(tk.path(), e.line(), name, e.problem());
+      }
+      if (j == 0) lines[i] = tk.line();
       if (v <= 0)
-        tk.fail(std::string(element) + " " + std::to_string(i + 1),
-                "vertex index " + std::to_string(v) + " is not positive (" + section + " indices are 1-based)");
+        tk.fail(name, "vertex index " + std::to_string(v) + " is not positive (" + section + " indices are 1-based)");
       cells[i][j] = static_cast<std::size_t>(v - 1);
     }
-    const std::int64_t r = tk.read_int("a reference");
-    refs[i] = static_cast<int>(r);
+    refs[i] = reference_of(tk, name, "the reference");
   }
 }
 
@@ -67,7 +88,7 @@ void read_vertices(Medit_tokenizer& tk, const std::string& path, Medit_mesh& m) 
       }
       if (k == 0) m.vertex_lines[i] = tk.line();
     }
-    m.vertex_references[i] = static_cast<int>(tk.read_int("a vertex reference"));
+    m.vertex_references[i] = reference_of(tk, "vertex " + std::to_string(i + 1), "the reference");
   }
 }
 
@@ -76,7 +97,22 @@ void skip_section(Medit_tokenizer& tk, std::string_view kw) {
   const Skipped_section* s = nullptr;
   for (const auto& candidate : skipped_sections)
     if (Medit_tokenizer::keyword_equals(kw, candidate.name)) s = &candidate;
+  for (const char* other : {"Hexahedra", "Prisms", "Pyramids"})
+    if (Medit_tokenizer::keyword_equals(kw, other)) {
+      const std::size_t n = tk.read_count(other, 1);
+      if (n == 0) return;
+      tk.fail("", std::to_string(n) + " " + other + " (" + other +
+                      " section): only tetrahedral meshes are read, and leaving them out would change the domain; "
+                      "split them into tetrahedra first");
+    }
   if (!s) {
+    if (std::any_of(kw.begin(), kw.end(), [](char c) { return c != '\t' && std::iscntrl(static_cast<unsigned char>(c)); }))
+      tk.fail("", "binary data where a keyword was expected: only ASCII Medit files are read (a binary .meshb or "
+                  ".solb file? convert it to ASCII first)");
+    const std::size_t p = kw.find_last_of("PQ");
+    if (p != std::string_view::npos && p > 0 && p + 1 < kw.size() &&
+        std::all_of(kw.begin() + p + 1, kw.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); }))
+      tk.fail("", "section " + Input_error::quote(kw) + ": high-order elements are not read (mesh at order 1)");
     const bool numeric = !kw.empty() && (std::isdigit(static_cast<unsigned char>(kw[0])) || kw[0] == '-' || kw[0] == '.');
     tk.fail("", numeric ? "unexpected number " + Input_error::quote(kw) +
                               " where a section keyword was expected (a count does not match its section?)"
@@ -94,11 +130,11 @@ void skip_section(Medit_tokenizer& tk, std::string_view kw) {
 // Every vertex index of `cells` is below `nv`, or an error naming the cell (1-based) and its line.
 template <std::size_t N>
 void check_index_range(const std::string& path, const std::vector<std::array<std::size_t, N>>& cells,
-                       const char* element, const std::vector<std::size_t>* lines, std::size_t nv) {
+                       const char* element, const std::vector<std::size_t>& lines, std::size_t nv) {
   for (std::size_t i = 0; i < cells.size(); ++i)
     for (std::size_t v : cells[i])
       if (v >= nv)
-        throw Input_error(path, lines ? (*lines)[i] : 0, std::string(element) + " " + std::to_string(i + 1),
+        throw Input_error(path, lines[i], std::string(element) + " " + std::to_string(i + 1),
                           "vertex index " + std::to_string(v + 1) + " is out of range 1.." + std::to_string(nv) +
                               " (" + std::to_string(nv) + (nv == 1 ? " vertex" : " vertices") + " in the file)");
 }
@@ -108,7 +144,8 @@ void check_index_range(const std::string& path, const std::vector<std::array<std
 Medit_mesh read_medit_mesh(const std::string& path) {
   Medit_tokenizer tk(path);
   Medit_mesh m;
-  bool have_vertices = false, have_tets = false, have_version = false;
+  bool have_vertices = false, have_tets = false, have_triangles = false, have_edges = false;
+  std::vector<std::size_t> triangle_lines, edge_lines;
   std::size_t tet_section_line = 0;
   std::string_view kw;
   while (tk.next(kw)) {
@@ -116,7 +153,6 @@ Medit_mesh read_medit_mesh(const std::string& path) {
       const auto v = tk.read_int("the MeshVersionFormatted value");
       if (v < 1 || v > 4) tk.fail("", "unsupported MeshVersionFormatted " + std::to_string(v));
       m.version = static_cast<int>(v);
-      have_version = true;
     } else if (Medit_tokenizer::keyword_equals(kw, "Dimension")) {
       const auto d = tk.read_int("the Dimension value");
       if (d != 3)
@@ -129,30 +165,33 @@ Medit_mesh read_medit_mesh(const std::string& path) {
       if (have_tets) tk.fail("", "a second Tetrahedra section");
       tet_section_line = tk.line();
       const std::size_t n = tk.read_count("Tetrahedra", 5);
-      read_cells<4>(tk, "Tetrahedra", "tetrahedron", n, m.tetrahedra, m.tetrahedron_references, &m.tetrahedron_lines);
+      read_cells<4>(tk, "Tetrahedra", "tetrahedron", n, m.tetrahedra, m.tetrahedron_references, m.tetrahedron_lines);
       have_tets = true;
     } else if (Medit_tokenizer::keyword_equals(kw, "Triangles")) {
+      if (have_triangles) tk.fail("", "a second Triangles section");
       const std::size_t n = tk.read_count("Triangles", 4);
-      read_cells<3>(tk, "Triangles", "triangle", n, m.triangles, m.triangle_references, nullptr);
+      read_cells<3>(tk, "Triangles", "triangle", n, m.triangles, m.triangle_references, triangle_lines);
+      have_triangles = true;
     } else if (Medit_tokenizer::keyword_equals(kw, "Edges")) {
+      if (have_edges) tk.fail("", "a second Edges section");
       const std::size_t n = tk.read_count("Edges", 3);
-      read_cells<2>(tk, "Edges", "edge", n, m.edges, m.edge_references, nullptr);
+      read_cells<2>(tk, "Edges", "edge", n, m.edges, m.edge_references, edge_lines);
+      have_edges = true;
     } else if (Medit_tokenizer::keyword_equals(kw, "End")) {
       break;
     } else {
       skip_section(tk, kw);
     }
   }
-  (void)have_version;
   if (!have_vertices) throw Input_error(path, 0, "", "no Vertices section");
   if (!have_tets)
     throw Input_error(path, 0, "", "no Tetrahedra section: this is not a volume mesh (a surface or 2D mesh?)");
   if (m.tetrahedra.empty()) throw Input_error(path, tet_section_line, "", "the Tetrahedra section is empty");
 
   // Indices were checked to be positive; check the upper bound now that all sections are read.
-  check_index_range(path, m.tetrahedra, "tetrahedron", &m.tetrahedron_lines, m.vertices.size());
-  check_index_range(path, m.triangles, "triangle", nullptr, m.vertices.size());
-  check_index_range(path, m.edges, "edge", nullptr, m.vertices.size());
+  check_index_range(path, m.tetrahedra, "tetrahedron", m.tetrahedron_lines, m.vertices.size());
+  check_index_range(path, m.triangles, "triangle", triangle_lines, m.vertices.size());
+  check_index_range(path, m.edges, "edge", edge_lines, m.vertices.size());
   return m;
 }
 

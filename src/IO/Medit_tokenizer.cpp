@@ -5,6 +5,8 @@
 #include "input_file.h"
 
 #include <cctype>
+#include <charconv>
+#include <cmath>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -15,7 +17,7 @@ namespace IO {
 Medit_tokenizer::Medit_tokenizer(std::string path) : path_(std::move(path)) {
   internal::check_input_file(path_);
   std::ifstream in(path_, std::ios::binary);
-  if (!in) throw Input_error(path_, 0, "", "cannot open the file for reading");
+  if (!in) throw Input_error(path_, 0, "", internal::cannot_open_for_reading());
   std::ostringstream ss;
   ss << in.rdbuf();
   if (in.bad()) throw Input_error(path_, 0, "", "read error");
@@ -65,16 +67,11 @@ std::int64_t Medit_tokenizer::read_int(const char* what) {
 }
 
 double Medit_tokenizer::read_double(const char* what) {
-  std::string_view t = expect(what);
-  std::string_view s = t;
-  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  const std::string_view t = expect(what);
   double v = 0;
-  const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-  // from_chars reports overflow as out of range: that is an infinite value for us.
-  if (r.ec == std::errc::result_out_of_range)
+  if (!internal::parse_double(t, v)) fail("", std::string("expected ") + what + ", found " + Input_error::quote(t));
+  if (std::isinf(v) && t.find_first_of("iI") == std::string_view::npos)
     fail("", std::string(what) + " " + Input_error::quote(t) + " overflows a double");
-  if (r.ec != std::errc() || r.ptr != s.data() + s.size())
-    fail("", std::string("expected ") + what + ", found " + Input_error::quote(t));
   if (!std::isfinite(v)) fail("", std::string(what) + " is not finite (" + Input_error::quote(t) + ")");
   return v;
 }

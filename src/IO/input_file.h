@@ -1,14 +1,20 @@
 // Copyright (c) 2026 CGAL Metric Frames contributors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
-// Internal to the readers that open a path: the check made before opening it.
+// Internal to the readers that open a path: the check made before opening it,
+// and the parsing of a number token.
 #ifndef CGAL_EXT_SRC_IO_INPUT_FILE_H
 #define CGAL_EXT_SRC_IO_INPUT_FILE_H
 
 #include <CGAL_ext/Input_error.h>
 
+#include <charconv>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <system_error>
 
 namespace CGAL_ext::IO::internal {
@@ -25,6 +31,29 @@ inline void check_input_file(const std::string& path) {
   if (std::filesystem::is_directory(s)) throw Input_error(path, 0, "", "is a directory, not a file");
   if (!std::filesystem::is_regular_file(s))
     throw Input_error(path, 0, "", "is not a regular file (a device, a FIFO or a socket)");
+}
+
+// The message for a file that did not open, with the system's reason (right
+// after the failed open, while errno holds it).
+inline std::string cannot_open_for_reading() {
+  return std::string("cannot open the file for reading: ") + std::strerror(errno);
+}
+
+// Parses a whole token as a double (an optional leading `+` accepted) into
+// `v`; false if it is not a number. A magnitude beyond the doubles gives an
+// infinity, which the callers refuse as not finite; one below them gives 0
+// or a subnormal, as strtod (and so MMG's and Gmsh's readers) would: a
+// coordinate of 1e-400 is 0 to double precision, not an error.
+inline bool parse_double(std::string_view token, double& v) {
+  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+  const auto r = std::from_chars(token.data(), token.data() + token.size(), v);
+  if (r.ptr != token.data() + token.size()) return false;
+  if (r.ec == std::errc::result_out_of_range) {
+    const std::string copy(token);
+    v = std::strtod(copy.c_str(), nullptr); // +-HUGE_VAL on overflow, 0 or subnormal on underflow
+    return true;
+  }
+  return r.ec == std::errc();
 }
 
 } // namespace CGAL_ext::IO::internal

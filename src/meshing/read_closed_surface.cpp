@@ -572,7 +572,7 @@ Surface read_closed_surface(const std::string& path, std::vector<std::string>& r
                       (ext.empty() ? std::string("no file extension") : "unsupported extension '" + ext + "'") +
                           ": expected .off, .obj, .stl or .ply");
   IO::internal::check_input_file(path);
-  if (!std::ifstream(path, std::ios::binary)) throw Input_error(path, 0, "", "cannot open the file for reading");
+  if (!std::ifstream(path, std::ios::binary)) throw Input_error(path, 0, "", IO::internal::cannot_open_for_reading());
   if (ext == ".obj") check_obj_face_indices(path);
   if (ext == ".ply") check_ply_file(path);
 

@@ -22,7 +22,9 @@ namespace IO {
 /// All indices are 0-based (the file's are 1-based). Sections other than the
 /// ones below (Corners, Ridges, RequiredVertices, Quadrilaterals, Normals...)
 /// are read over and dropped. `Triangles` and `Edges` are kept as given,
-/// which may include interior faces (TetGen and Gmsh write those).
+/// which may include interior faces (TetGen and Gmsh write those). Volume
+/// elements other than tetrahedra (non-empty `Hexahedra`, `Prisms`,
+/// `Pyramids`) are an error, since leaving them out would change the domain.
 struct Medit_mesh {
   std::vector<std::array<double, 3>> vertices;          ///< coordinates
   std::vector<int> vertex_references;                   ///< one per vertex
