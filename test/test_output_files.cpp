@@ -606,4 +606,6 @@ TEST_CASE(".perm: write_perm refuses bad faces and leaves the existing file", "[
                  "face 0 (0-based): tetrahedron index out of range");
   expect_invalid(p, [&] { CGAL_ext::IO::write_perm(p, {3, {Perm_face{1, 1, {{1, 2, 3}}}}}); }, "both sides");
   expect_invalid(p, [&] { CGAL_ext::IO::write_perm(p, {3, {Perm_face{0, 1, {{1, 1, 3}}}}}); }, "target of two");
+  expect_invalid(p, [&] { CGAL_ext::IO::write_perm(p, {3, {Perm_face{0, 1, {{2, 1, 3}}}, Perm_face{1, 0, {{2, 1, 3}}}}}); },
+                 "face 1 (0-based): the face between tetrahedra 1 and 0 is listed twice");
 }

@@ -32,6 +32,7 @@ std::string signed_permutation_problem(const std::array<int, 3>& p) {
 } // namespace
 
 void write_perm(const std::string& path, const Perm_file& file) {
+  std::set<std::pair<std::size_t, std::size_t>> seen; // as read_perm() checks: what it writes reads back
   for (std::size_t k = 0; k < file.faces.size(); ++k) {
     const Perm_face& f = file.faces[k];
     std::string problem = signed_permutation_problem(f.p);
@@ -39,6 +40,9 @@ void write_perm(const std::string& path, const Perm_file& file) {
       problem = "tetrahedron index out of range (" + std::to_string(file.tets) + " tetrahedra)";
     else if (f.tet1 == f.tet2)
       problem = "both sides are tetrahedron " + std::to_string(f.tet1);
+    else if (!seen.emplace(std::min(f.tet1, f.tet2), std::max(f.tet1, f.tet2)).second)
+      problem = "the face between tetrahedra " + std::to_string(f.tet1) + " and " + std::to_string(f.tet2) +
+                " is listed twice";
     if (!problem.empty())
       throw std::invalid_argument("write_perm: " + path + ": face " + std::to_string(k) + " (0-based): " + problem);
   }

@@ -62,8 +62,9 @@ struct Perm_file {
 /// \param path the file (conventionally `*.perm`, next to the `.fra` file)
 /// \param file the number of tetrahedra and the faces
 /// \throws std::invalid_argument (naming `path` and the face, 0-based) if a
-///   tetrahedron index is out of range, a face joins a tetrahedron to itself
-///   or `p` is not a signed permutation of 1, 2, 3
+///   tetrahedron index is out of range, a face joins a tetrahedron to itself,
+///   a face is listed twice (in either orientation) or `p` is not a signed
+///   permutation of 1, 2, 3: the file would not read back
 /// \throws std::runtime_error if the file cannot be written
 void write_perm(const std::string& path, const Perm_file& file);
 
