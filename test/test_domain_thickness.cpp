@@ -77,6 +77,27 @@ TEST_CASE("a slab's thickness: its height behind its faces, its width behind its
     CHECK_THROWS_AS(Thickness(field, bad), std::invalid_argument);
 }
 
+TEST_CASE("a slab's thickness in the metrics 2^-1000 I and 2^1000 I: the same fractions, lengths scaled exactly",
+          "[thickness]") {
+  // g = s^2 I with s a power of two: every metric length is s times the
+  // Euclidean one. A^{-1} of 2^-500 I through a determinant (2^-1500)
+  // would be infinite.
+  Grid g(make_kuhn_grid({4, 4, 1}, 0.25));
+  for (const int k : {-500, 500}) {
+    const double s = std::ldexp(1.0, k);
+    INFO("s = 2^" << k);
+    const Field field(g.tr, (s * s * Eigen::Matrix3d::Identity()).eval());
+    const Thickness t(field, 2 * s);
+    for (const Thickness::Facet& f : t.facets()) {
+      Eigen::Vector3d c, n;
+      facet_frame(field, f, c, n);
+      CHECK(f.thickness / s == Approx(std::abs(n.z()) > 0.5 ? 0.25 : 1.0).margin(1e-10));
+    }
+    CHECK(t.total_area() / (s * s) == Approx(2 + 4 * 0.25).margin(1e-10));
+    CHECK(t.area_fraction_below(0.5 * s) == Approx(2.0 / 3).margin(1e-10));
+  }
+}
+
 TEST_CASE("thickness in a metric: measured in it, along the metric normal", "[thickness]") {
   SECTION("diag(1, 1, 4): the slab is twice as thick, its sides as wide, and its sides' areas double") {
     Grid g(make_kuhn_grid({4, 4, 1}, 0.25));

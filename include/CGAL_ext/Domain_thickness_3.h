@@ -168,12 +168,20 @@ private:
     Eigen::Vector3d centroid, n; // n: the outward unit normal
     double area;
     internal::boundary_facet_geometry(c, f.facet, centroid, n, area);
+    // A = As 2^e with As's entries below 1: the inverse and determinant of a
+    // metric of scale 1e-300 (hexes of 1e150) or 1e300 would under- or
+    // overflow (a determinant of 1e-450), powers of two change no bit.
     const Eigen::Matrix3d A = field.A_at(c, point(centroid));
-    const Eigen::Matrix3d A_inv = A.inverse();
+    int e = 0;
+    std::frexp(A.cwiseAbs().maxCoeff(), &e);
+    const Eigen::Matrix3d As = A * std::ldexp(1.0, -e);
+    const Eigen::Matrix3d As_inv = As.inverse();
+    const Eigen::Vector3d m = As_inv.transpose() * n; // A^{-T} n 2^e
     // Nanson: the metric area vector is det(A) A^{-T} (area n).
-    f.metric_area = A.determinant() * (A_inv.transpose() * n).norm() * area;
-    const Eigen::Vector3d u = A_inv * (A_inv.transpose() * n); // g^{-1} n
-    const Eigen::Vector3d inward = -u / (A * u).norm();        // unit length in the metric at the centroid
+    f.metric_area = std::ldexp(As.determinant() * m.norm() * area, 2 * e);
+    // The inward metric normal g^{-1} n = A^{-1} A^{-T} n, of unit length in
+    // the metric at the centroid: -(As^{-1} m) / |m| 2^-e.
+    const Eigen::Vector3d inward = -(As_inv * m) * (std::ldexp(1.0, -e) / m.norm());
     // Walk on in legs until the ray leaves the domain or its length reaches
     // the cap. Each leg is a quarter longer than the length left needs at
     // the metric's rate on the last leg (at first, the centroid's), at
