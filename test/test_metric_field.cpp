@@ -397,6 +397,21 @@ TEST_CASE("a property-map field checks the user's values, names the vertex, and 
   bad = g;
   bad[2](0, 1) += 1e-3;
   CHECK_THROWS_AS(Map_field(tr, Array_map(bad.begin()), CGAL_ext::Vertex_metric_kind::sqrt_metric), CGAL_ext::Input_error);
+  // Roots that pass the checks made for g, while g = A A does not: it
+  // overflows, underflows, or squares a condition number of 1e10.
+  for (const M3& A : {M3(1e200 * M3::Identity()), M3(1e-160 * M3::Identity()), M3(M3(V3(1, 1, 1e-10).asDiagonal()))}) {
+    INFO(A.diagonal().transpose());
+    REQUIRE(CGAL_ext::check_metric_tensor(A).empty());
+    bad = g;
+    bad[3] = A;
+    try {
+      const Map_field f(tr, Array_map(bad.begin()), CGAL_ext::Vertex_metric_kind::sqrt_metric);
+      FAIL("no exception");
+    } catch (const CGAL_ext::Input_error& e) {
+      CHECK(e.element() == "vertex 4");
+      CHECK_THAT(e.problem(), Catch::StartsWith("g = A A of its square root A: "));
+    }
+  }
 
   // The user changes g in place: after metric_changed() every cached curl
   // equals that of a field built on the new values; an invalid new value

@@ -364,8 +364,15 @@ private:
   void check_vertex(Vertex_handle v) const {
     const Eigen::Matrix3d value = get(map_, v);
     std::string why = check_metric_tensor(value);
+    if (kind_ == Vertex_metric_kind::sqrt_metric) {
+      // A passing the checks made for g does not make g = A A pass them: its
+      // condition number is squared, and it can over- or underflow.
+      if (!why.empty())
+        why = "its square root A: " + why;
+      else if (!(why = check_metric_tensor(value * value)).empty())
+        why = "g = A A of its square root A: " + why;
+    }
     if (why.empty()) return;
-    if (kind_ == Vertex_metric_kind::sqrt_metric) why = "its square root A: " + why;
     throw internal::metric_vertex_error(get(vim_, v), v->point(), why);
   }
 
