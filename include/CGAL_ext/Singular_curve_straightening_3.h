@@ -10,6 +10,7 @@
 
 #include <CGAL_ext/Frame_field_matchings_3.h>
 #include <CGAL_ext/Frame_field_singularities_3.h>
+#include <CGAL_ext/Tet_mesh_statistics_3.h>
 #include <CGAL_ext/internal/tets_around_vertices.h>
 
 #include <CGAL/enum.h>
@@ -108,7 +109,26 @@ struct Singular_curve_straightening_report {
   /// The largest displacement of a vertex, over the mean length of its two
   /// curve edges before.
   double max_relative_displacement = 0;
+  /** @{ */
+  /// The smallest dihedral angle of the tetrahedra, in degrees, with the
+  /// mesh's positions and with the returned ones. The guard refuses
+  /// inversions only, not flat tetrahedra: straight curves give fewer
+  /// inverted hexes (`doc/frame_fields.md`), at the cost of tetrahedra
+  /// that these figures show.
+  double min_dihedral_before_deg = 0, min_dihedral_after_deg = 0;
+  /** @} */
+  /** @{ */
+  /// The tetrahedra with a dihedral angle below
+  /// `straightening_flat_angle_deg`, with the mesh's positions and with the
+  /// returned ones.
+  std::size_t flat_tets_before = 0, flat_tets_after = 0;
+  /** @} */
 };
+
+/// \ingroup PkgCGALExtFrames
+/// The dihedral angle, in degrees, below which
+/// `Singular_curve_straightening_report` counts a tetrahedron as flat.
+constexpr double straightening_flat_angle_deg = 1;
 
 /// \ingroup PkgCGALExtFrames
 /// Straightens the singular curves of a frame field by moving their interior
@@ -208,6 +228,21 @@ std::vector<Eigen::Vector3d> straighten_singular_curves(const Frame_field& ff,
   // Each tetrahedron keeps the orientation it has in the mesh.
   std::vector<CGAL::Orientation> sign(m);
   for (std::size_t i = 0; i < m; ++i) sign[i] = orientation(i);
+  // The smallest dihedral angle and the flat tetrahedra, at the positions p.
+  auto shape = [&](double& min_angle, std::size_t& flat) {
+    static const int edge_others[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
+    min_angle = m ? 180 : 0;
+    flat = 0;
+    for (std::size_t i = 0; i < m; ++i) {
+      double least = 180;
+      for (const auto& e : edge_others)
+        least = std::min(least, internal::stat_dihedral_angle(p[tet[i][e[0]]], p[tet[i][e[1]]], p[tet[i][e[2]]],
+                                                              p[tet[i][e[3]]]));
+      min_angle = std::min(min_angle, least);
+      if (least < straightening_flat_angle_deg) ++flat;
+    }
+  };
+  shape(r.min_dihedral_before_deg, r.flat_tets_before);
 
   std::vector<Eigen::Vector3d> start(movable.size());
   for (std::size_t k = 0; k < movable.size(); ++k) start[k] = p[movable[k]];
@@ -303,6 +338,7 @@ std::vector<Eigen::Vector3d> straighten_singular_curves(const Frame_field& ff,
     }
     if (length > 0) r.max_relative_displacement = std::max(r.max_relative_displacement, (p[v] - start[k]).norm() / length);
   }
+  shape(r.min_dihedral_after_deg, r.flat_tets_after);
   if (report) *report = r;
   return p;
 }

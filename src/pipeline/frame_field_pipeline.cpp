@@ -288,7 +288,11 @@ Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric
     const std::string before = std::to_string(r.non_meshable_edges_unstraightened) + " non-meshable edges and " +
                                std::to_string(bad_nodes_before) + " nodes",
                       after = std::to_string(bad) + " and " + std::to_string(bad_nodes);
-    const std::string detail = moves + (keep ? before + " -> " + after : "nothing changed");
+    char shape[200];
+    std::snprintf(shape, sizeof shape, "; smallest dihedral angle %.3g -> %.3g deg, tets below %g deg %zu -> %zu",
+                  report.min_dihedral_before_deg, report.min_dihedral_after_deg, straightening_flat_angle_deg,
+                  report.flat_tets_before, report.flat_tets_after);
+    const std::string detail = moves + (keep ? before + " -> " + after + shape : "nothing changed");
     clock("straightening", detail);
   }
   return r;
