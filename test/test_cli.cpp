@@ -155,7 +155,7 @@ TEST_CASE("bad input: one error line naming the file and the line, exit code 1, 
   };
   const Case cases[] = {
       {"empty.mesh", "", ": the file is empty"},
-      {"garbage.mesh", "\x01\x02garbage here\n", ":1: unknown keyword"},
+      {"garbage.mesh", "\x01\x02garbage here\n", ":1: binary data where a keyword was expected"},
       {"truncated.mesh", "Dimension 3\nVertices\n4\n0 0 0 1\n1 0", ":3: Vertices: the count 4 is more than the rest"},
       {"count.mesh", "Dimension 3\nVertices\n5\n0 0 0 1\n1 0 0 1\n0 1 0 1\n0 0 1 1\nTetrahedra\n1\n1 2 3 4 1\n",
        ":8: vertex 5: expected a coordinate, found 'Tetrahedra'"},
@@ -231,7 +231,8 @@ TEST_CASE("walk: a malformed segment line is an error naming the file and the li
     const char* expected;
   };
   const Case cases[] = {
-      {"0 0 0 1 1 1\n\n1 2 3 4 5\n", ":3: expected 6 numbers (ax ay az bx by bz), found 5"},
+      {"0 0 0 1 1 1\n\n1 2 3 4 5\n", ":3: expected 6 numbers (qx qy qz px py pz), found 5"},
+      {"0 0 0 1 1 1 # a comment\n1 2 3 4 5 # 6\n", ":2: expected 6 numbers (qx qy qz px py pz), found 5"},
       {"0 0 0 1 1 1 1\n", ":1: more than 6 numbers on the line"},
       {"0 0 0 1 1 nan\n", ":1: 'nan' is not a finite number"},
       {"0 0 0 1 one 1\n", ":1: 'one' is not a finite number"},
@@ -244,6 +245,9 @@ TEST_CASE("walk: a malformed segment line is an error naming the file and the li
     CHECK(r.out.empty()); // the whole file is read before any output
     CHECK(r.err.find("metric-frames walk: error: " + path + c.expected) != std::string::npos);
   }
+  const Run commented = run("walk " + mesh + " --segments " + file_with("commented.txt", "0.1 0.2 0.3 0.9 0.8 0.7 # q -> p\n"));
+  CHECK(commented.exit_code == 0);
+  CHECK(!commented.out.empty());
   CHECK(run("walk " + mesh).exit_code == 2);                                   // no --segments
   CHECK(run("walk --segments " + file_with("one.txt", "0 0 0 1 1 1\n")).exit_code == 2); // no MESH
   const Run missing = run("walk " + mesh + " --segments " + (work / "none.txt").string());

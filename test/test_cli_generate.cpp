@@ -297,6 +297,17 @@ TEST_CASE("generate refuses to overwrite outputs without --force", "[cli][genera
   const Run f = run("generate " + cube + " --force -o " + out.string());
   CHECK(f.exit_code == 0);
   CHECK(slurp(mine) != "my notes\n");
+  // An output name taken by a directory: refused before any computation,
+  // even with --force, so that no output is replaced.
+  const std::string before = slurp(out / "frames.fra");
+  std::filesystem::remove(out / "frames.vtu");
+  std::filesystem::create_directory(out / "frames.vtu");
+  const Run d = run("generate " + cube + " --force --metric-const '4 0 4 0 0 4' -o " + out.string());
+  CHECK(d.exit_code == 1);
+  CHECK(d.err.find("frames.vtu: is a directory or another non-file") != std::string::npos);
+  CHECK(d.err.find("[stage]") == std::string::npos);
+  CHECK(slurp(out / "frames.fra") == before);
+  CHECK(run("generate " + cube + " -o ''").exit_code == 2); // an empty output path
 }
 
 TEST_CASE("generate rejects bad input with a clear message", "[cli][generate]") {
@@ -988,7 +999,7 @@ TEST_CASE("the pipeline's library functions write the files of generate, bit for
   const CGAL_ext::Pipeline_metric metric = CGAL_ext::make_pipeline_metric(mesh, input);
   context.thickness = CGAL_ext::measure_pipeline_thickness(metric);
   const CGAL_ext::Pipeline_frame_field frames =
-      CGAL_ext::generate_pipeline_frame_field(metric, context.options, CGAL_ext::Singularity_repair_options(), {},
+      CGAL_ext::generate_pipeline_frame_field(metric, CGAL_ext::Frame_field_options(), CGAL_ext::Singularity_repair_options(), {},
                                               CGAL_ext::pipeline_straightening_options(mesh));
   CGAL_ext::write_pipeline_outputs(dir, mesh, frames);
   CGAL_ext::write_pipeline_report(dir, CGAL_ext::pipeline_report_json(mesh, metric, frames, context));

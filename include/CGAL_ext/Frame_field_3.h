@@ -228,6 +228,10 @@ public:
   ///          `update_statistics()`)
   const Frame_field_statistics& statistics() const { return stats_; }
 
+  /// The options of the last `compute()` or `prepare()` (the defaults before).
+  /// \returns the options
+  const Frame_field_options& options() const { return opt_; }
+
   /// The number of tetrahedra (frames).
   /// \returns the number of tetrahedra, indexed `0..size()-1`
   std::size_t size() const { return e_.cells.size(); }

@@ -106,7 +106,9 @@ struct Frame_field_options {
   std::function<void(const std::string& stage, double seconds, const std::string& detail)> progress;
   /// If set, called after each iteration of the two iterative stages with the
   /// stage name, the iteration number and its measure (the relative residual
-  /// of the conjugate gradients, the energy of L-BFGS), for progress display.
+  /// of the conjugate gradients; the objective of L-BFGS, which is the
+  /// smoothness energy plus the weighted boundary terms, so above the
+  /// energy that the statistics report), for progress display.
   std::function<void(const std::string& stage, int iteration, double measure)> iteration_progress;
 };
 
@@ -237,7 +239,7 @@ struct Singularity_repair_options {
   /// non-meshable edges left by the repair without and with them: CGAL's
   /// anchor 7 and 2, TetGen's anchor 12 and 0, TetGen's fandisk 1 and 0.
   /// They cost time only where defects remain (at 10^6
-  /// tetrahedra 43 s, for 19 -> 8). 0 turns them off.
+  /// tetrahedra about 12 s of their own, for 19 -> 8). 0 turns them off.
   int max_further_rounds = 8;
   /// The radii of the further rounds, taken in turn.
   std::vector<int> further_radii = {3, 2};

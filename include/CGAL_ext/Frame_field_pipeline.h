@@ -186,6 +186,9 @@ Pipeline_thickness measure_pipeline_thickness(const Pipeline_metric& metric, con
 /// \throws Input_error naming the source and the vertex (1-based) of a tensor
 ///   that is not SPD once scaled, for a `per_vertex` of the wrong size, or
 ///   for an expected number of hexahedra that overflows double precision
+/// \throws std::invalid_argument if `input` has both `constant` and
+///   `per_vertex`, or if the hex size (given, or the mesh's mean edge length
+///   or Mesh_3 size) is not positive and finite
 Pipeline_metric make_pipeline_metric(const Pipeline_tet_mesh& mesh, const Pipeline_metric_input& input,
                                      const Pipeline_stage_callback& stage = {});
 
@@ -280,8 +283,9 @@ const std::vector<std::string>& pipeline_output_names();
 /// \ingroup PkgCGALExtPipeline
 /// Checks, before any computation, that the outputs can be written into
 /// `directory`: it is a directory or can be created, a file can be made in
-/// it, no output would replace one of `inputs`, and no output exists unless
-/// `force` is set.
+/// it, no output would replace one of `inputs`, no output's name is taken
+/// by a directory or another non-file (even with `force`), and no output
+/// exists unless `force` is set.
 /// \param directory the output directory
 /// \param inputs the input files, never to be overwritten
 /// \param force whether existing output files may be replaced
@@ -303,10 +307,9 @@ void write_pipeline_outputs(const std::string& directory, const Pipeline_tet_mes
 /// What the report names besides the results: the input, the options and the
 /// stages' times.
 struct Pipeline_report_context {
-  /// The input, as given.
+  /// The input, as given. (The options reported are those the field ran
+  /// with, `Frame_field_3::options()`.)
   std::string input;
-  /// The frame field's options (the feature angle is reported).
-  Frame_field_options options;
   /// Seconds per stage, by name.
   std::map<std::string, double> stage_seconds;
   /// How thin the domain is, if it was measured (`measure_pipeline_thickness()`).
@@ -316,7 +319,7 @@ struct Pipeline_report_context {
 /// \ingroup PkgCGALExtPipeline
 /// Writes `json` as `report.json` into `directory`, atomically.
 /// \param directory the output directory
-/// \param json the report's text, from `pipeline_report()` (Frame_field_pipeline_report.h)
+/// \param json the report's text, from `pipeline_report_json()` (Frame_field_pipeline_report.h)
 /// \returns the file's path
 /// \throws std::runtime_error if the file cannot be written
 std::string write_pipeline_report(const std::string& directory, const std::string& json);
@@ -327,7 +330,7 @@ std::string write_pipeline_report(const std::string& directory, const std::strin
 /// \param mesh the tet mesh
 /// \param metric the metric field and its scaling
 /// \param frames the frame field and its singularities
-/// \param context the input, the options and the stages' times
+/// \param context the input, the stages' times and the thickness
 /// \returns the text, starting with an empty line and ending with a newline
 std::string pipeline_summary_text(const Pipeline_tet_mesh& mesh, const Pipeline_metric& metric,
                                   const Pipeline_frame_field& frames, const Pipeline_report_context& context);

@@ -114,6 +114,10 @@ inline nlohmann::ordered_json pipeline_straightening_json(const Pipeline_frame_f
           {"reverted_vertices", s.reverted_vertices},
           {"max_relative_displacement", s.max_relative_displacement},
           {"kept", !frames.positions.empty()},
+          {"min_dihedral_before_deg", s.min_dihedral_before_deg},
+          {"min_dihedral_with_moved_deg", s.min_dihedral_after_deg},
+          {"flat_tets_before", s.flat_tets_before},
+          {"flat_tets_with_moved", s.flat_tets_after},
           {"non_meshable_before", frames.non_meshable_edges_unstraightened},
           {"non_meshable_with_moved", frames.non_meshable_edges_straightened},
           {"non_meshable_after", frames.non_meshable_edges},
@@ -145,10 +149,11 @@ inline nlohmann::ordered_json pipeline_coverage_ceiling_json(const Pipeline_fram
 } // namespace internal
 
 /// \ingroup PkgCGALExtPipeline
-/// The report of `report.json` (format in `output_files.md`) as a JSON value
-/// whose keys keep their documented order: counts, hex size, expected hexes,
-/// singular curves and nodes, non-meshable edges, energies, face angles,
-/// alignment, repair, straightening and timings. Numbers are written by nlohmann-json, in
+/// The report of `report.json` (keys in doc/cli.md, `generate`) as a JSON
+/// value whose keys keep their documented order: input and metric, hex size,
+/// expected hexes, counts, singular edges, curves and nodes, energies, face
+/// angles, alignment, sharp features, coverage ceiling, thickness, repair,
+/// straightening, iterations and timings. Numbers are written by nlohmann-json, in
 /// the shortest form that reads back as the same double; a number that is
 /// not finite is `null`. Header-only: it needs nlohmann-json.
 ///
@@ -157,7 +162,7 @@ inline nlohmann::ordered_json pipeline_coverage_ceiling_json(const Pipeline_fram
 /// \param mesh the tet mesh (its vertex count is reported)
 /// \param metric the metric field and its scaling
 /// \param frames the frame field and its singularities
-/// \param context the input, the options and the stages' times
+/// \param context the input, the stages' times and the thickness
 /// \returns the report, a JSON object
 inline nlohmann::ordered_json pipeline_report(const Pipeline_tet_mesh& mesh, const Pipeline_metric& metric,
                                               const Pipeline_frame_field& frames,
@@ -174,6 +179,8 @@ inline nlohmann::ordered_json pipeline_report(const Pipeline_tet_mesh& mesh, con
       {"expected_hexes", metric.expected_hexes},
       {"tets", frames.frames->size()},
       {"vertices", mesh.mesh.vertices.size()},
+      {"reoriented_tets", mesh.build.reoriented_tets},
+      {"unused_vertices", mesh.build.unused_vertices},
       {"interior_faces", st.interior_faces},
       {"boundary_faces", st.boundary_faces},
       {"singular_edges", frames.singular_edges.size()},
@@ -183,7 +190,7 @@ inline nlohmann::ordered_json pipeline_report(const Pipeline_tet_mesh& mesh, con
       {"projected_energy", st.projected_energy},
       {"diffusion",
        {{"steps", st.diffusion_steps},
-        {"length", context.options.diffusion_length},
+        {"length", frames.frames->options().diffusion_length},
         {"iterations", st.diffusion_iterations},
         {"energy", st.diffused_energy}}},
       {"face_angle_deg", {{"mean", angles.mean_deg}, {"median", angles.median_deg}, {"max", angles.max_deg}}},
@@ -191,7 +198,7 @@ inline nlohmann::ordered_json pipeline_report(const Pipeline_tet_mesh& mesh, con
       {"g_orthonormality_max_error", st.max_orthonormality_error},
       {"hard_boundary_tets", {{"one_axis", st.hard_one_axis}, {"two_axes", st.hard_two_axes}}},
       {"sharp_features",
-       {{"angle_deg", context.options.feature_angle_deg},
+       {{"angle_deg", frames.frames->options().feature_angle_deg},
         {"edges", st.feature_edges},
         {"curve_vertices", st.feature_curve_vertices},
         {"corners", st.feature_corners},
@@ -216,7 +223,7 @@ inline nlohmann::ordered_json pipeline_report(const Pipeline_tet_mesh& mesh, con
 /// \param mesh the tet mesh (its vertex count is reported)
 /// \param metric the metric field and its scaling
 /// \param frames the frame field and its singularities
-/// \param context the input, the options and the stages' times
+/// \param context the input, the stages' times and the thickness
 /// \returns the JSON text
 inline std::string pipeline_report_json(const Pipeline_tet_mesh& mesh, const Pipeline_metric& metric,
                                         const Pipeline_frame_field& frames, const Pipeline_report_context& context) {

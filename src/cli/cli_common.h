@@ -7,6 +7,8 @@
 #ifndef CGAL_EXT_CLI_COMMON_H
 #define CGAL_EXT_CLI_COMMON_H
 
+#include <CGAL_ext/build_triangulation_from_tets.h>
+
 #include <CGAL/Real_timer.h>
 
 #include <tbb/global_control.h>
@@ -36,6 +38,16 @@ inline std::unique_ptr<tbb::global_control> thread_limit(std::size_t threads) {
 
 /// Prints "[stage] name  1.23 s" lines on stderr, and a total at the end
 /// (wall-clock time, CGAL::Real_timer).
+// The notes on what building the triangulation changed or left out, on
+// stderr: re-oriented tetrahedra (with what that means for the command's
+// outputs) and vertices used by no tetrahedron.
+inline void print_build_notes(const Tet_mesh_build_report& r, const char* reoriented_consequence) {
+  if (r.reoriented_tets)
+    std::fprintf(stderr, "[note] %zu negatively oriented tetrahedra were re-oriented (first: tetrahedron %zu); %s\n",
+                 r.reoriented_tets, r.reoriented_examples.front() + 1, reoriented_consequence);
+  if (r.unused_vertices) std::fprintf(stderr, "[note] %zu vertices are used by no tetrahedron\n", r.unused_vertices);
+}
+
 class Stage_timer {
 public:
   Stage_timer() {

@@ -88,9 +88,11 @@ Generate_plan plan_generate(const Generate_request& r) {
   // Tetrahedra about the size of the smallest hex edge or smaller: a field,
   // and the integer-grid map on it, resolve nothing finer than a
   // tetrahedron. That edge is h / sqrt(largest eigenvalue) for a constant
-  // metric, h for a formula (whose sizes vary: --size meshes finer).
-  if (r.hex_size) {
-    double cap = *r.hex_size;
+  // metric, h for a formula (whose sizes vary: --size meshes finer), where
+  // h is --hex-size, or 1 for a metric given without it (its unit length is
+  // the hex edge): --metric-const '100 100 100' and --hex-size 0.1 mesh alike.
+  if (r.hex_size || plan.constant_metric || plan.formula) {
+    double cap = r.hex_size.value_or(1.0);
     if (plan.constant_metric) // valid: parse_constant_metric() checked it
       cap /= std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(*plan.constant_metric, Eigen::EigenvaluesOnly)
                            .eigenvalues()
@@ -131,26 +133,19 @@ int run_generate(const Generate_request& r) {
 
   if (r.size && plan.mesh_options.max_automatic_size > 0 && *r.size > plan.mesh_options.max_automatic_size)
     std::fprintf(stderr,
-                 "[note] --size %.6g is larger than the hex edge %.6g (--hex-size and the metric): the tetrahedra "
+                 "[note] --size %.6g is larger than the hex edge %.6g (the metric, and --hex-size): the tetrahedra "
                  "will be coarser than the hexahedra, and the field resolves nothing finer than a tetrahedron "
                  "(without --size, Mesh_3 meshes at the hex edge or finer)\n",
                  *r.size, plan.mesh_options.max_automatic_size);
   Stage_timer timer;
   Pipeline_report_context context;
   context.input = r.input;
-  context.options = plan.options;
   auto stage = [&](const std::string& name, double seconds, const std::string& detail) {
     std::fprintf(stderr, "[stage] %-22s %8.3f s  %s\n", name.c_str(), seconds, detail.c_str());
     context.stage_seconds[name] = seconds;
   };
   const Pipeline_tet_mesh mesh = load_tet_mesh(r.input, plan.mesh_options, stage);
-  if (mesh.build.reoriented_tets)
-    std::fprintf(stderr,
-                 "[note] %zu negatively oriented tetrahedra were re-oriented (first: tetrahedron %zu); mesh.mesh "
-                 "has them positive, as CubeCover and HexEx need\n",
-                 mesh.build.reoriented_tets, mesh.build.reoriented_examples.front() + 1);
-  if (mesh.build.unused_vertices)
-    std::fprintf(stderr, "[note] %zu vertices are used by no tetrahedron\n", mesh.build.unused_vertices);
+  print_build_notes(mesh.build, "mesh.mesh has them positive (two vertices swapped), as CubeCover and HexEx need");
 
   const Pipeline_metric field = make_pipeline_metric(mesh, metric_input(r, plan, mesh), stage);
   // Said before the long stages: parts thinner than a hex edge are a cause of
@@ -179,7 +174,7 @@ int run_generate(const Generate_request& r) {
     if (since_report.time() < 1) return;
     since_report.reset();
     std::fprintf(stderr, "[progress] %s: iteration %d, %s %.4g\n", name.c_str(), iteration,
-                 name == "refinement" ? "energy" : "relative residual", measure);
+                 name == "refinement" ? "objective (energy + boundary terms)" : "relative residual", measure);
   };
   std::optional<Singularity_repair_options> repair_options;
   if (!r.no_repair) {

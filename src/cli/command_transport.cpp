@@ -39,14 +39,14 @@ int run_transport(const Transport_request& request) {
   Stage_timer timer;
   Tr tr;
   IO::Medit_mesh mesh;
-  IO::read_tet_mesh(request.mesh, tr, &mesh);
+  print_build_notes(IO::read_tet_mesh(request.mesh, tr, &mesh), "the transports are the same on either orientation");
   timer.stage("read and build mesh");
   const std::vector<Eigen::Matrix3d> metrics = IO::read_medit_sol(request.metric, mesh.vertices.size());
   Metric_field_3<Tr>::check_extent(tr, request.mesh);
   const Metric_field_3<Tr> field(tr, metrics, request.metric);
   field.precompute();
   timer.stage("read metric");
-  const std::vector<Point_pair> input = read_point_pairs(request.pairs);
+  const std::vector<Point_pair> input = read_point_pairs(request.pairs, "ax ay az bx by bz");
   std::vector<std::pair<Tr::Point, Tr::Point>> pairs;
   pairs.reserve(input.size());
   for (const Point_pair& p : input)

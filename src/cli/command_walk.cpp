@@ -38,10 +38,10 @@ Json piece_json(const Segment_walk_piece_3<Tr>& piece) {
 int run_walk(const Walk_request& request) {
   Stage_timer timer;
   Tr tr;
-  IO::read_tet_mesh(request.mesh, tr);
+  print_build_notes(IO::read_tet_mesh(request.mesh, tr), "the walk is the same on either orientation");
   timer.stage("read and build");
   // Read all segments first: a malformed line stops before any output.
-  const std::vector<Point_pair> segments = read_point_pairs(request.segments);
+  const std::vector<Point_pair> segments = read_point_pairs(request.segments, "qx qy qz px py pz");
   timer.stage("read segments");
 
   const Segment_walk_3<Tr, Is_tet_mesh_domain_cell> walk(tr, Is_tet_mesh_domain_cell());

@@ -112,7 +112,7 @@ CLI::Validator whole_number(double lo, double hi) {
         s = std::to_string(static_cast<long long>(v));
         return std::string();
       },
-      "INT");
+      "INT in [" + std::to_string(long(lo)) + " - " + std::to_string(long(hi)) + "]"); // as CLI::Range shows it
 }
 
 // The `--threads N` option of the subcommands that run in parallel.
@@ -129,7 +129,8 @@ CLI::Option* add_output_option(CLI::App& app, std::string& path, const std::stri
       ->required()
       ->check(CLI::Validator(
           [](std::string& s) -> std::string {
-            return !s.empty() && s[0] == '=' ? Input_error::quote(s) + ": write -o PATH or --output=PATH" : "";
+            if (s.empty()) return "the output path is empty";
+            return s[0] == '=' ? Input_error::quote(s) + ": write -o PATH or --output=PATH" : "";
           },
           ""));
 }
@@ -209,7 +210,7 @@ CLI::App* add_transport(CLI::App& app, Transport_request& r) {
 
 // metric, its options bound to `r`.
 CLI::App* add_metric(CLI::App& app, Metric_request& r) {
-  CLI::App* sub = app.add_subcommand("metric", "write a metric .sol file from formulas in x, y, z (or a constant tensor)");
+  CLI::App* sub = app.add_subcommand("metric", "write a metric .sol file from formulas in x, y, z (constant formulas for a constant tensor)");
   sub->add_option("MESH", r.mesh, "a Medit .mesh file: the metric is evaluated at its vertices")->required();
   CLI::Option* expr =
       sub->add_option("--expr", r.expr,
@@ -285,7 +286,7 @@ CLI::App* add_generate(CLI::App& app, Generate_request& r) {
       ->check(positive_finite);
   sub.add_option("--size", r.size,
                  "Mesh_3 size for surface and builtin inputs: it bounds the tetrahedra's circumradii; edges come out "
-                 "about 1.2-1.35 h (default: bounding-box diagonal / 20, or the hex edge that --hex-size asks for if smaller)")
+                 "about 1.2-1.35 h (default: bounding-box diagonal / 20, or the smallest hex edge that the metric and --hex-size ask for if smaller)")
       ->type_name("h")
       ->check(positive_finite);
   sub.add_option("--max-memory", r.max_memory,
@@ -306,7 +307,7 @@ CLI::App* add_generate(CLI::App& app, Generate_request& r) {
                  "--diffusion-with-features): the field smoothed over --diffusion-length first; on smooth shapes "
                  "a lower energy, not always a better hex mesh (0: none)")
       ->type_name("N")
-      ->check(CLI::Range(0, 1000))
+      ->transform(whole_number(0, 1000))
       ->capture_default_str();
   sub.add_option("--diffusion-length", r.options.diffusion_length,
                  "length of each diffusion step, in hex edges (the metric's unit length)")

@@ -18,11 +18,13 @@ struct Point_pair {
   std::size_t line;
 };
 
-/// Reads a file of lines of 6 finite numbers. Blank lines and lines whose
-/// first non-blank character is `#` are skipped. Throws Input_error naming
-/// the file and line for anything else (too few or too many numbers, a word,
-/// NaN or Inf); "-" reads standard input.
-std::vector<Point_pair> read_point_pairs(const std::string& path);
+/// Reads a file of lines of 6 finite numbers. A `#` starts a comment that
+/// runs to the end of the line; blank lines are skipped. Throws Input_error
+/// naming the file and line for anything else (too few or too many numbers,
+/// a word, NaN or Inf); "-" reads standard input.
+/// \param path the file, or "-"
+/// \param layout the names of the 6 numbers, for messages (e.g. "qx qy qz px py pz")
+std::vector<Point_pair> read_point_pairs(const std::string& path, const char* layout);
 
 } // namespace CGAL_ext::cli
 

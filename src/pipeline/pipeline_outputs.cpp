@@ -148,6 +148,11 @@ void check_pipeline_output_directory(const std::string& directory, const std::ve
     if (!fs::exists(p, ec)) continue;
     for (const std::string& input : inputs)
       if (fs::equivalent(p, input, ec)) throw std::runtime_error(p.string() + ": the output would overwrite an input file");
+    // Checked now, not when the file is written after the computation: with
+    // --force, the outputs before it would be replaced and the rest not.
+    if (!fs::is_regular_file(p, ec))
+      throw std::runtime_error(p.string() + ": is a directory or another non-file; an output cannot replace it (remove it, "
+                                            "or choose another output directory)");
     if (!force) throw std::runtime_error(p.string() + ": the file exists; give --force to replace the outputs");
   }
 }
@@ -224,7 +229,7 @@ std::string pipeline_summary_text(const Pipeline_tet_mesh& mesh, const Pipeline_
                 "face angle (deg)", angles.mean_deg, angles.median_deg, "boundary alignment error (deg)",
                 st.boundary_error_mean_deg,
                 st.boundary_error_max_deg, "max |F^T g F - I|", st.max_orthonormality_error, "sharp features",
-                st.feature_edges, st.feature_corners, context.options.feature_angle_deg, st.feature_tets, dropped.c_str(),
+                st.feature_edges, st.feature_corners, frames.frames->options().feature_angle_deg, st.feature_tets, dropped.c_str(),
                 "singular edges", frames.singular_edges.size(), types.empty() ? "" : " (", types.c_str(),
                 types.empty() ? "" : ")", "singular curves", graph.curves.size(), graph.closed_curves,
                 graph.nodes.size(), graph.junctions, graph.boundary_ends, graph.interior_ends,

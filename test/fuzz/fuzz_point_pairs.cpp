@@ -16,7 +16,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   fuzz::expect_input_error_only(
       [&] {
         std::size_t previous_line = 0;
-        for (const CGAL_ext::cli::Point_pair& p : CGAL_ext::cli::read_point_pairs(path)) {
+        for (const CGAL_ext::cli::Point_pair& p : CGAL_ext::cli::read_point_pairs(path, "ax ay az bx by bz")) {
           for (int k = 0; k < 3; ++k)
             if (!std::isfinite(p.a[k]) || !std::isfinite(p.b[k])) std::abort();
           if (p.line <= previous_line) std::abort();
