@@ -92,7 +92,8 @@ struct Transport_options {
   /// [0.01, 100] the measured error stayed below `tolerance` at 1e-6, 1e-8 and
   /// 1e-10 (see test_cell_transport). Below about 1e-13 rounding dominates.
   double tolerance = 1e-8;
-  /// Trapezoid: the maximal subdivision depth (at most `2^max_depth` pieces).
+  /// Trapezoid: the maximal subdivision depth (at most `2^(max_depth + 1)`
+  /// pieces: a piece accepted at depth `d` counts as its two halves).
   /// A piece at this depth is accepted whatever its error, and
   /// `Transport_result::converged` is then false.
   int max_depth = 22;
@@ -103,7 +104,8 @@ struct Transport_options {
   /// generator needs a handful; only a metric that changes by orders of
   /// magnitude inside one cell needs more. When they are used up, the rest
   /// of the segment is one step and `converged` is false, so that the time
-  /// of a transport is bounded (about `12 * max_steps` evaluations).
+  /// of a transport is bounded (at most `6 * max_steps` evaluations: each
+  /// try is three Magnus steps of two evaluations each).
   std::size_t max_steps = 10000;
 };
 

@@ -62,11 +62,12 @@ using Tet_mesh_triangulation_3 = CGAL::Triangulation_3<
 /// Unary predicate on cell handles: `true` for the cells of the domain of a
 /// `Tet_mesh_triangulation_3` (those with a tetrahedron index).
 ///
-/// Pass it to `Segment_walk_3`, `Point_locator_3` and `Metric_transport_3`
-/// for a tet mesh (their default, `Is_finite_cell`, takes every finite cell:
-/// right for a convex Delaunay triangulation only). The metric and frame
-/// fields recognise the domain by `Tet_mesh_cell_index_map` instead, which
-/// is negative exactly where this predicate is false.
+/// Pass it to `Segment_walk_3` and `Point_locator_3` for a tet mesh (their
+/// default, `Is_finite_cell`, takes every finite cell: right for a convex
+/// Delaunay triangulation only). The metric and frame fields recognise the
+/// domain by `Tet_mesh_cell_index_map` instead, which is negative exactly
+/// where this predicate is false. `Metric_transport_3` takes no predicate:
+/// its walk uses this one when the field has that map.
 struct Is_tet_mesh_domain_cell {
   /// \tparam Cell_handle a handle to a cell with `Tet_mesh_cell_info` info
   /// \param c the cell

@@ -43,7 +43,7 @@ struct Tet_mesh_build_report {
   std::vector<std::size_t> reoriented_examples;
   /// Number of vertices that no tetrahedron uses. They are not in the
   /// triangulation (a CGAL vertex needs an incident cell), and their handle
-  /// in the returned vector is null.
+  /// in `vertex_handles` (if given) is null.
   std::size_t unused_vertices = 0;
   /// Number of boundary facets (each closed by one infinite cell).
   std::size_t boundary_facets = 0;
