@@ -278,6 +278,12 @@ TEST_CASE("metric writes a .sol from formulas, and rejects bad formulas and non-
   const std::string mesh_copy = file_with("copy.mesh", slurp(mesh));
   CHECK(run("metric " + mesh_copy + " --size 1 -o " + mesh_copy + " --force").exit_code == 1);
   CHECK(slurp(mesh_copy) == slurp(mesh));
+  const auto dir = work / "a_directory.sol";
+  std::filesystem::create_directories(dir);
+  const Run on_dir = run("metric " + mesh + " --size 1 -o " + dir.string() + " --force");
+  CHECK(on_dir.exit_code == 1);
+  CHECK(on_dir.err.find("a_directory.sol: is a directory or another non-file") != std::string::npos);
+  CHECK(on_dir.err.find("[stage]") == std::string::npos); // refused before reading the mesh
 
   struct Case {
     std::string args;

@@ -110,6 +110,18 @@ TEST_CASE("a second compute() with other set-up options redoes the set-up: the s
   }
   CHECK(Frames(field).compute().feature_edges == 4 * (4 + 3 + 3)); // the box's 12 edges, in mesh edges
   CHECK(Frames(field).compute(soft).hard_two_axes == 0);
+
+  // A set-up that throws half-way is redone by the next call, not used:
+  // the same options throw again, and good ones give a fresh field's result.
+  Frame_field_options bad;
+  bad.crease_split_deg = -1;
+  CHECK_THROWS_AS(reused.compute(bad), std::invalid_argument);
+  CHECK_THROWS_AS(reused.compute(bad), std::invalid_argument);
+  const Frame_field_statistics after = reused.compute(Frame_field_options());
+  Frames fresh(field);
+  CHECK(after.hard_two_axes == fresh.compute().hard_two_axes);
+  CHECK(after.smoothness_energy == fresh.statistics().smoothness_energy);
+  for (std::size_t i = 0; i < fresh.size(); ++i) REQUIRE(reused.rotation(i) == fresh.rotation(i));
 }
 
 TEST_CASE("constant anisotropic metric diag(1,16,4): F = A^-1 up to the octahedral group", "[frame_field]") {

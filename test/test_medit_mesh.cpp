@@ -6,6 +6,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <iterator>
 #include <fstream>
@@ -184,6 +185,12 @@ TEST_CASE("bad files give one clear error naming file and line", "[medit][bad-in
     CHECK(e.element() == "vertex 2");
     CHECK(e.problem().find("not finite") != std::string::npos);
   }
+  SECTION("a sign after a plus sign") {
+    CHECK(read_error("plusminus.mesh", "Dimension 3\nVertices\n1\n+-1 0 0 1\n").problem() ==
+          "expected a coordinate, found '+-1'");
+    CHECK(read_error("plusminus2.mesh", "Dimension 3\nVertices\n1\n1 0 0 +-1\n").problem() ==
+          "expected the reference, found '+-1'");
+  }
   SECTION("Inf coordinate and overflow") {
     CHECK(read_error("inf.mesh", "Dimension 3\nVertices\n1\n0 -inf 0 1\n").problem().find("not finite") != std::string::npos);
     CHECK(read_error("ovf.mesh", "Dimension 3\nVertices\n1\n0 1e999 0 1\n").problem().find("overflows") != std::string::npos);
@@ -193,6 +200,15 @@ TEST_CASE("bad files give one clear error naming file and line", "[medit][bad-in
                                                                      "1 0 0 1\n0 1 0 1\n0 0 1 1\nTetrahedra\n1\n1 2 3 4 1\n"));
     CHECK(m.vertices[0][1] == 0.0);
     CHECK(m.vertices[0][2] == 0.0);
+    CHECK(std::signbit(m.vertices[0][2]));
+    // Beyond long double too, and a subnormal that double holds.
+    const Medit_mesh far = read_medit_mesh(temp_file("underflow2.mesh", "Dimension 3\nVertices\n4\n-1e-6000 4e-320 0 1\n"
+                                                                        "1 0 0 1\n0 1 0 1\n0 0 1 1\nTetrahedra\n1\n1 2 3 4 1\n"));
+    CHECK(far.vertices[0][0] == 0.0);
+    CHECK(std::signbit(far.vertices[0][0]));
+    CHECK(far.vertices[0][1] == Approx(4e-320).epsilon(1e-3));
+    CHECK(read_error("ovf2.mesh", "Dimension 3\nVertices\n1\n0 -1e6000 0 1\n").problem().find("overflows") !=
+          std::string::npos);
   }
   SECTION("a 2D mesh") {
     const Input_error e = read_error("2d.mesh", "MeshVersionFormatted 2\nDimension 2\nVertices\n3\n0 0 1\n1 0 1\n0 1 1\n");
@@ -235,8 +251,12 @@ TEST_CASE("bad files give one clear error naming file and line", "[medit][bad-in
   }
   SECTION("high-order sections and a second Triangles or Edges section") {
     const std::string head = "Dimension 3\nVertices\n4\n0 0 0 1\n1 0 0 1\n0 1 0 1\n0 0 1 1\nTetrahedra\n1\n1 2 3 4 1\n";
-    CHECK(read_error("p2.mesh", head + "EdgesP2\n0\n").problem() ==
+    CHECK(read_error("p2.mesh", head + "EdgesP2\n1\n1 2 3 1\n").problem() ==
           "section 'EdgesP2': high-order elements are not read (mesh at order 1)");
+    CHECK(read_error("p2lower.mesh", head + "tetrahedrap2\n1\n1 2 3 4 1 2 3 4 1 2 1\n").problem().find("high-order") !=
+          std::string::npos);
+    CHECK(read_medit_mesh(temp_file("p2empty.mesh", head + "EdgesP2\n0\n")).edges.empty());
+    CHECK(read_error("bom.mesh", "\xEF\xBB\xBF" + head).problem().find("byte-order mark") != std::string::npos);
     CHECK(read_error("tri2.mesh", head + "Triangles\n1\n1 2 3 1\nTriangles\n1\n1 2 4 1\n").problem() ==
           "a second Triangles section");
     CHECK(read_error("edge2.mesh", head + "Edges\n0\nEdges\n0\n").problem() == "a second Edges section");

@@ -184,7 +184,11 @@ public:
   void prepare(const Frame_field_options& options = {}) {
     opt_ = options;
     if (prepared_ && same_set_up(prepared_with_, options)) return;
-    prepared_with_ = options;
+    // Marked done only at the end: a set-up or transport that throws (a
+    // negative crease angle, a transport that does not converge) leaves its
+    // data half-made, and the next call must redo it, not use it.
+    prepared_ = false;
+    coarse_.reset(); // made from the weights and constraints
     Timer t;
     e_.set_up(opt_, stats_);
     stats_.seconds_setup = t.lap();
@@ -196,6 +200,7 @@ public:
     report("face transports", stats_.seconds_transports,
            std::to_string(stats_.identity_transports) + " exactly identity, largest angle " +
                format_number(stats_.max_transport_angle * 180 / M_PI) + " deg");
+    prepared_with_ = options;
     prepared_ = true;
   }
 

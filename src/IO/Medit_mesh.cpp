@@ -109,10 +109,15 @@ void skip_section(Medit_tokenizer& tk, std::string_view kw) {
     if (std::any_of(kw.begin(), kw.end(), [](char c) { return c != '\t' && std::iscntrl(static_cast<unsigned char>(c)); }))
       tk.fail("", "binary data where a keyword was expected: only ASCII Medit files are read (a binary .meshb or "
                   ".solb file? convert it to ASCII first)");
-    const std::size_t p = kw.find_last_of("PQ");
+    if (kw.substr(0, 3) == "\xEF\xBB\xBF")
+      tk.fail("", "the file starts with a UTF-8 byte-order mark (bytes EF BB BF), which Medit files do not have: "
+                  "save it without one");
+    const std::size_t p = kw.find_last_of("PQpq");
     if (p != std::string_view::npos && p > 0 && p + 1 < kw.size() &&
-        std::all_of(kw.begin() + p + 1, kw.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); }))
+        std::all_of(kw.begin() + p + 1, kw.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); })) {
+      if (tk.read_count(std::string(kw), 1) == 0) return; // an empty section changes nothing
       tk.fail("", "section " + Input_error::quote(kw) + ": high-order elements are not read (mesh at order 1)");
+    }
     const bool numeric = !kw.empty() && (std::isdigit(static_cast<unsigned char>(kw[0])) || kw[0] == '-' || kw[0] == '.');
     tk.fail("", numeric ? "unexpected number " + Input_error::quote(kw) +
                               " where a section keyword was expected (a count does not match its section?)"

@@ -57,6 +57,8 @@ std::int64_t Medit_tokenizer::read_int(const char* what) {
   std::string_view t = expect(what);
   std::string_view s = t;
   if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  if (!s.empty() && (s.front() == '+' || s.front() == '-') && s.size() < t.size()) // "+-1"
+    fail("", std::string("expected ") + what + ", found " + Input_error::quote(t));
   std::int64_t v = 0;
   const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
   if (r.ec == std::errc::result_out_of_range)

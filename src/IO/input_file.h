@@ -10,7 +10,7 @@
 
 #include <charconv>
 #include <cerrno>
-#include <cstdlib>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <string>
@@ -45,15 +45,30 @@ inline std::string cannot_open_for_reading() {
 // or a subnormal, as strtod (and so MMG's and Gmsh's readers) would: a
 // coordinate of 1e-400 is 0 to double precision, not an error.
 inline bool parse_double(std::string_view token, double& v) {
-  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
-  const auto r = std::from_chars(token.data(), token.data() + token.size(), v);
-  if (r.ptr != token.data() + token.size()) return false;
-  if (r.ec == std::errc::result_out_of_range) {
-    const std::string copy(token);
-    v = std::strtod(copy.c_str(), nullptr); // +-HUGE_VAL on overflow, 0 or subnormal on underflow
+  if (!token.empty() && token.front() == '+') {
+    token.remove_prefix(1);
+    if (!token.empty() && (token.front() == '+' || token.front() == '-')) return false; // "+-1"
+  }
+  const char* const end = token.data() + token.size();
+  const auto r = std::from_chars(token.data(), end, v);
+  if (r.ptr != end) return false;
+  if (r.ec != std::errc::result_out_of_range) return r.ec == std::errc();
+  // Out of the doubles' range: in long double (to 1e+-4932) it rounds to
+  // +-inf or to 0 or a subnormal; from_chars, unlike strtod, ignores the
+  // locale (a comma-decimal LC_NUMERIC would cut "1.5e-400" to 1).
+  long double x = 0;
+  const auto rl = std::from_chars(token.data(), end, x);
+  if (rl.ptr != end) return false;
+  if (rl.ec == std::errc()) {
+    v = static_cast<double>(x);
     return true;
   }
-  return r.ec == std::errc();
+  // Beyond even long double: the sign of the exponent tells which way.
+  const std::size_t e = token.find_last_of("eE");
+  const bool tiny = e != std::string_view::npos && e + 1 < token.size() && token[e + 1] == '-';
+  const bool negative = token.front() == '-';
+  v = tiny ? (negative ? -0.0 : 0.0) : (negative ? -HUGE_VAL : HUGE_VAL);
+  return true;
 }
 
 } // namespace CGAL_ext::IO::internal

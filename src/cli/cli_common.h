@@ -36,8 +36,6 @@ inline std::unique_ptr<tbb::global_control> thread_limit(std::size_t threads) {
   return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
 }
 
-/// Prints "[stage] name  1.23 s" lines on stderr, and a total at the end
-/// (wall-clock time, CGAL::Real_timer).
 // The notes on what building the triangulation changed or left out, on
 // stderr: re-oriented tetrahedra (with what that means for the command's
 // outputs) and vertices used by no tetrahedron.
@@ -48,6 +46,8 @@ inline void print_build_notes(const Tet_mesh_build_report& r, const char* reorie
   if (r.unused_vertices) std::fprintf(stderr, "[note] %zu vertices are used by no tetrahedron\n", r.unused_vertices);
 }
 
+/// Prints "[stage] name  1.23 s" lines on stderr, and a total at the end
+/// (wall-clock time, CGAL::Real_timer).
 class Stage_timer {
 public:
   Stage_timer() {

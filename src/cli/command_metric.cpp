@@ -28,6 +28,8 @@ int run_metric(const Metric_request& request) {
   std::error_code ec;
   if (std::filesystem::exists(request.out, ec) && std::filesystem::equivalent(request.out, request.mesh, ec))
     throw std::runtime_error(request.out + ": the output would overwrite the input mesh");
+  if (std::filesystem::exists(request.out, ec) && !std::filesystem::is_regular_file(request.out, ec))
+    throw std::runtime_error(request.out + ": is a directory or another non-file; the output cannot replace it");
   if (std::filesystem::exists(request.out, ec) && !request.force)
     throw std::runtime_error(request.out + ": the file exists; give --force to replace it");
 
