@@ -385,6 +385,15 @@ TEST_CASE("tetrahedra sharing a vertex or an edge may touch only there", "[build
   // On opposite sides of the edge: they touch along the edge only.
   r[4] = {0.5, -2, 0};
   CHECK(build_error(r, {{0, 1, 2, 3}, {0, 1, 4, 5}}) == "accepted");
+
+  // Two tetrahedra on either side of one triangle, the second with copies
+  // of its vertices: the message says that vertices coincide.
+  std::vector<std::array<double, 3>> d{o, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+  const std::string dup = build_error(d, {{0, 1, 2, 3}, {7, 4, 5, 6}});
+  INFO(dup);
+  CHECK(contains(dup, "where they share no vertex"));
+  CHECK(contains(dup, "have the same coordinates: a duplicated vertex, to be merged"));
+  CHECK(!contains(same, "same coordinates"));
 }
 
 // Five tets around one edge, each turning 100 degrees about it: 500 degrees

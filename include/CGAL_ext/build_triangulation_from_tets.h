@@ -262,12 +262,19 @@ Tet_mesh_build_report build_triangulation_from_tets(
   }
   if (const auto hit = internal::find_boundary_overlap(points, triangles)) {
     const std::size_t ta = boundary[(*hit)[0]].first, tb = boundary[(*hit)[1]].first;
+    // Two distinct vertices at one point, the commonest cause, said as such.
+    std::string same_point;
+    for (std::size_t a : triangles[(*hit)[0]])
+      for (std::size_t b : triangles[(*hit)[1]])
+        if (a != b && same_point.empty() && points[a] == points[b])
+          same_point = "; vertices " + std::to_string(std::min(a, b) + 1) + " and " + std::to_string(std::max(a, b) + 1) +
+                       " have the same coordinates: a duplicated vertex, to be merged";
     throw Input_error(src.file, internal::tet_line(src, std::max(ta, tb)), internal::tet_name(src, std::max(ta, tb)),
                       "overlaps or touches tetrahedron " + std::to_string(std::min(ta, tb) + 1) +
                           " where they share no vertex: their boundary facets " + facet_text(triangles[(*hit)[ta < tb ? 1 : 0]]) +
                           " and " + facet_text(triangles[(*hit)[ta < tb ? 0 : 1]]) +
                           " meet elsewhere than in their common vertices (parts of a mesh must share the vertices where "
-                          "they touch)");
+                          "they touch)" + same_point);
   }
   // ... the corners around a boundary vertex overlapping, ...
   if (const auto hit = internal::find_overlap_around_vertex(points, oriented, triangles)) {
