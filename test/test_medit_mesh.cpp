@@ -60,7 +60,7 @@ TEST_CASE("a minimal file reads with 0-based indices and references", "[medit]")
 
 TEST_CASE("free format: comments, case, indentation, values on the next line, skipped sections", "[medit]") {
   const std::string text = "# written by hand\n  meshversionformatted\n 1\n\n DIMENSION\n   3 # three\n"
-                           "Corners 2\n 1\n 2\nRequiredVertices\n1\n3\n"
+                           "Corners 2\n 1\n 2\nRequiredVertices\n1\n3\nGeometry \"my part.mesh\"\nIdentifier\nplain\n"
                            "vertices\n4\n  0 0 0 1\n1 0 0 1 # comment after a record\n0 1 0 1\n0 0 1 1\n"
                            "Ridges\n1\n1\nNormals\n1\n0 0 1\nNormalAtVertices\n1\n1 1\n"
                            "Triangles\n2\n1 2 3 5\n1 2 4 5\nEdges 1 1 2 9\nTETRAHEDRA\n1\n1 2 3 4 0\n";

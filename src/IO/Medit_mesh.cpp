@@ -123,8 +123,10 @@ void skip_section(Medit_tokenizer& tk, std::string_view kw) {
                               " where a section keyword was expected (a count does not match its section?)"
                         : "unknown keyword " + Input_error::quote(kw));
   }
-  if (s->tokens == 0) { // a string value (Identifier, Geometry): one token
-    tk.expect("a value");
+  if (s->tokens == 0) { // a string value (Identifier, Geometry): a word, or a quoted string with spaces
+    std::string_view t = tk.expect("a value");
+    if (t.size() > 0 && t.front() == '"')
+      while (t.size() < 2 || t.back() != '"') t = tk.expect("the end of a quoted string");
     return;
   }
   const std::size_t n = tk.read_count(s->name, s->tokens);
