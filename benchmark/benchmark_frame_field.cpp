@@ -124,7 +124,7 @@ static int run(int argc, char** argv) {
                 "", st.linear_iterations, st.linear_residual, st.coarse_iterations, st.coarse_unknowns / 9,
                 st.refinement_iterations, st.projected_energy,
                 st.smoothness_energy, sing.size(), repair.non_meshable_before, repair.non_meshable_after,
-                repair.rounds, repair.regions_accepted, repair.regions_tried, repair.lbfgs_iterations,
+                repair.rounds, repair.regions_kept, repair.regions_tried, repair.lbfgs_iterations,
                 double(repair.lbfgs_tet_iterations) / double(std::max<std::size_t>(repair.lbfgs_iterations, 1)),
                 st.boundary_error_mean_deg, st.boundary_error_max_deg);
     std::fflush(stdout);

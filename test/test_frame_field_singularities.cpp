@@ -1008,14 +1008,14 @@ TEST_CASE("a field built with non-meshable edges is repaired", "[singularities][
   for (std::size_t i = 0; i < ff.size(); ++i) q_before[i] = ff.rotation_quaternion(i);
 
   const Singularity_repair_report r = repair_singularities(ff);
-  INFO("rounds " << r.rounds << ", regions " << r.regions_accepted << " of " << r.regions_tried);
+  INFO("rounds " << r.rounds << ", regions " << r.regions_kept << " of " << r.regions_tried);
   CHECK(r.non_meshable_before == before);
   const std::vector<Singular_edge> after = singular_edges(ff);
   CHECK(r.non_meshable_after == count_non_meshable(after));
   CHECK(r.non_meshable_after == 0);
   CHECK(r.non_meshable_nodes_after == singularity_graph(ff, after).non_meshable_vertices());
   CHECK(after.empty()); // the surrounding identity frames force no singularity at all
-  CHECK(r.regions_accepted > 0);
+  CHECK(r.regions_kept > 0);
   CHECK(r.energy_before == Approx(energy_before));
   CHECK(r.energy_after == ff.smoothness_energy());
   CHECK(ff.statistics().smoothness_energy == r.energy_after);
@@ -1050,11 +1050,11 @@ TEST_CASE("the repair does not depend on the thread count", "[singularities][rep
     CHECK(nodes_now == r.non_meshable_nodes_after);
     CHECK(std::make_pair(r.non_meshable_after, r.non_meshable_nodes_after) <=
           std::make_pair(r.non_meshable_before, r.non_meshable_nodes_before));
-    CHECK((r.regions_accepted > 0) == (std::make_pair(now, nodes_now) <
+    CHECK((r.regions_kept > 0) == (std::make_pair(now, nodes_now) <
                                        std::make_pair(r.non_meshable_before, r.non_meshable_nodes_before)));
   }
   CHECK(reports[0].non_meshable_after == reports[1].non_meshable_after);
-  CHECK(reports[0].regions_accepted == reports[1].regions_accepted);
+  CHECK(reports[0].regions_kept == reports[1].regions_kept);
   REQUIRE(results[0].size() == results[1].size());
   for (std::size_t i = 0; i < results[0].size(); ++i) CHECK(results[0][i].coeffs() == results[1][i].coeffs());
 }
@@ -1147,12 +1147,12 @@ TEST_CASE("the repair's restarts find meshable minima on a ball, and are reporte
     o.restarts = {restarts};
     o.max_further_rounds = o.max_released_rounds = 0; // their restarts would blur the comparison
     const Singularity_repair_report r = repair_singularities(*s->ff, o);
-    INFO("restarts " << restarts << ": rounds " << r.rounds << ", regions " << r.regions_accepted << " of "
+    INFO("restarts " << restarts << ": rounds " << r.rounds << ", regions " << r.regions_kept << " of "
                      << r.regions_tried << ", " << r.regions_from_restarts << " from restarts");
     CHECK(r.non_meshable_before > 0);
     CHECK(r.non_meshable_after < r.non_meshable_before);
     CHECK(count_non_meshable(singular_edges(*s->ff)) == r.non_meshable_after);
-    CHECK(r.regions_from_restarts <= r.regions_accepted);
+    CHECK(r.regions_from_restarts <= r.regions_kept);
     // On this ball the restarts find meshable minima for regions where the
     // two deterministic starts do not (3 of the regions kept, with GCC -O3
     // and Clang -O1 alike; how many edges remain differs in the last bits
@@ -1345,7 +1345,7 @@ TEST_CASE("the repair's released rounds remove defects that hard boundary constr
   CHECK(b.non_meshable_after < a.non_meshable_after);
   CHECK(count_non_meshable(singular_edges(ff)) == b.non_meshable_after);
   CHECK(b.regions_released > 0);
-  CHECK(b.regions_released <= b.regions_accepted);
+  CHECK(b.regions_released <= b.regions_kept);
   // The tetrahedra left released are those reported, each with a hard constraint.
   std::size_t released_tets = 0;
   for (std::size_t i = 0; i < ff.size(); ++i)

@@ -45,7 +45,7 @@ struct Singularity_repair_report {
   /** @{ */
   /// Rounds run, batches of regions re-optimised together, regions
   /// re-optimised, and regions kept (fewer defects than before).
-  std::size_t rounds = 0, batches = 0, regions_tried = 0, regions_accepted = 0;
+  std::size_t rounds = 0, batches = 0, regions_tried = 0, regions_kept = 0;
   /** @} */
   /// Regions kept whose frames came from a restart (`Singularity_repair_options::restarts`).
   std::size_t regions_from_restarts = 0;
@@ -563,7 +563,7 @@ Singularity_repair_report repair_singularities(Frame_field& ff, const Singularit
     ++report.rounds;
     const auto [tried, kept] = repairer.round(report.rounds - 1, radius, restarts, release);
     report.regions_tried += tried;
-    report.regions_accepted += kept;
+    report.regions_kept += kept;
     if (options.progress) options.progress(int(report.rounds), radius, tried, kept, repairer.non_meshable().size());
     return kept;
   };
@@ -591,7 +591,7 @@ Singularity_repair_report repair_singularities(Frame_field& ff, const Singularit
     report.regions_released = report.tets_released = 0;
     report.non_meshable_after = report.non_meshable_before;
     report.non_meshable_nodes_after = report.non_meshable_nodes_before;
-    report.regions_accepted = report.regions_from_restarts = report.tets_changed = 0;
+    report.regions_kept = report.regions_from_restarts = report.tets_changed = 0;
   }
   ff.update_statistics();
   report.energy_after = ff.smoothness_energy();

@@ -238,7 +238,7 @@ Pipeline_frame_field generate_pipeline_frame_field(const Pipeline_metric& metric
     const Singularity_repair_report& fix = *r.repair;
     clock("repair", std::to_string(fix.non_meshable_before) + " -> " + std::to_string(fix.non_meshable_after) +
                         " non-meshable edges, " + std::to_string(fix.non_meshable_nodes_before) + " -> " +
-                        std::to_string(fix.non_meshable_nodes_after) + " nodes; " + std::to_string(fix.regions_accepted) + " of " +
+                        std::to_string(fix.non_meshable_nodes_after) + " nodes; " + std::to_string(fix.regions_kept) + " of " +
                         std::to_string(fix.regions_tried) + " regions kept (" +
                         std::to_string(fix.regions_from_restarts) + " from restarts, " +
                         std::to_string(fix.regions_released) + " with hard constraints released), energy " +
