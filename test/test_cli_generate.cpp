@@ -26,9 +26,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <map>
 #include <set>
 #include <string>
+#include <vector>
 
 using namespace CGAL_ext::testing;
 
@@ -109,6 +111,18 @@ TEST_CASE("generate writes the six files, and the identity metric on a cube give
   CHECK(number(report, "/face_angle_deg/mean") < 1e-6); // a constant field
   CHECK(report.contains("g_orthonormality_max_error"));
   CHECK(report["stage_seconds"].contains("refinement"));
+  { // The stages in the order they ran.
+    const nlohmann::ordered_json ordered = nlohmann::ordered_json::parse(slurp(out / "report.json"));
+    std::vector<std::string> stages;
+    for (const auto& item : ordered["stage_seconds"].items()) stages.push_back(item.key());
+    INFO(nlohmann::json(stages).dump());
+    const auto at = [&](const char* name) { return std::find(stages.begin(), stages.end(), name) - stages.begin(); };
+    CHECK(at("read mesh") == 0);
+    CHECK(at("build triangulation") == 1);
+    CHECK(at("set-up") < at("refinement"));
+    CHECK(at("refinement") < at("straightening"));
+    CHECK(at("write outputs") == std::ptrdiff_t(stages.size()) - 1);
+  }
   // The cube's 12 edges are feature curves meeting at its 8 corners.
   CHECK(number(report, "/sharp_features/angle_deg") == 40);
   CHECK(number(report, "/sharp_features/corners") == 8);

@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
   context.input = input;
   const auto stage = [&](const std::string& name, double seconds, const std::string& detail) {
     std::printf("%-22s %7.3f s  %s\n", name.c_str(), seconds, detail.c_str());
-    context.stage_seconds[name] = seconds;
+    context.stage_seconds.emplace_back(name, seconds);
   };
 
   //! [pipeline]

@@ -27,10 +27,10 @@
 #include <Eigen/Core>
 
 #include <functional>
-#include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace CGAL_ext {
@@ -310,8 +310,9 @@ struct Pipeline_report_context {
   /// The input, as given. (The options reported are those the field ran
   /// with, `Frame_field_3::options()`.)
   std::string input;
-  /// Seconds per stage, by name.
-  std::map<std::string, double> stage_seconds;
+  /// Seconds per stage: its name and its time, in the order run (the
+  /// report keeps that order).
+  std::vector<std::pair<std::string, double>> stage_seconds;
   /// How thin the domain is, if it was measured (`measure_pipeline_thickness()`).
   std::optional<Pipeline_thickness> thickness;
 };

@@ -93,7 +93,7 @@ inline nlohmann::ordered_json pipeline_repair_json(const std::optional<Singulari
           {"rounds", fix->rounds},
           {"batches", fix->batches},
           {"regions_tried", fix->regions_tried},
-          {"regions_kept", fix->regions_accepted},
+          {"regions_kept", fix->regions_kept},
           {"regions_from_restarts", fix->regions_from_restarts},
           {"regions_released", fix->regions_released},
           {"tets_released", fix->tets_released},

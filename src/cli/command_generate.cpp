@@ -142,7 +142,7 @@ int run_generate(const Generate_request& r) {
   context.input = r.input;
   auto stage = [&](const std::string& name, double seconds, const std::string& detail) {
     std::fprintf(stderr, "[stage] %-22s %8.3f s  %s\n", name.c_str(), seconds, detail.c_str());
-    context.stage_seconds[name] = seconds;
+    context.stage_seconds.emplace_back(name, seconds);
   };
   const Pipeline_tet_mesh mesh = load_tet_mesh(r.input, plan.mesh_options, stage);
   print_build_notes(mesh.build, "mesh.mesh has them positive (two vertices swapped), as CubeCover and HexEx need");
