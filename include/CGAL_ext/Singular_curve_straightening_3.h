@@ -230,14 +230,12 @@ std::vector<Eigen::Vector3d> straighten_singular_curves(const Frame_field& ff,
   for (std::size_t i = 0; i < m; ++i) sign[i] = orientation(i);
   // The smallest dihedral angle and the flat tetrahedra, at the positions p.
   auto shape = [&](double& min_angle, std::size_t& flat) {
-    static const int edge_others[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
     min_angle = m ? 180 : 0;
     flat = 0;
     for (std::size_t i = 0; i < m; ++i) {
-      double least = 180;
-      for (const auto& e : edge_others)
-        least = std::min(least, internal::stat_dihedral_angle(p[tet[i][e[0]]], p[tet[i][e[1]]], p[tet[i][e[2]]],
-                                                              p[tet[i][e[3]]]));
+      const std::array<Eigen::Vector3d, 4> corners{p[tet[i][0]], p[tet[i][1]], p[tet[i][2]], p[tet[i][3]]};
+      const std::array<double, 6> angles = internal::stat_dihedral_angles(corners);
+      const double least = *std::min_element(angles.begin(), angles.end());
       min_angle = std::min(min_angle, least);
       if (least < straightening_flat_angle_deg) ++flat;
     }

@@ -60,6 +60,18 @@ double stat_dihedral_angle(const Point& p, const Point& q, const Point& r, const
   const Stat_vector c = stat_cross(n1, n2);
   return static_cast<double>(std::atan2(std::sqrt(stat_dot(c, c)), stat_dot(n1, n2)) * 180.0L / 3.141592653589793238462643383279502884L);
 }
+// The six dihedral angles of the tetrahedron (p0, p1, p2, p3), in degrees:
+// the one at edge (i, j) is between the facets (i, j, k) and (i, j, l).
+template <class Point>
+std::array<double, 6> stat_dihedral_angles(const std::array<Point, 4>& p) {
+  static const int edge_others[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
+  std::array<double, 6> angles;
+  for (int k = 0; k < 6; ++k) {
+    const int* e = edge_others[k];
+    angles[std::size_t(k)] = stat_dihedral_angle(p[std::size_t(e[0])], p[std::size_t(e[1])], p[std::size_t(e[2])], p[std::size_t(e[3])]);
+  }
+  return angles;
+}
 } // namespace internal
 
 /// \ingroup PkgCGALExtMesh
@@ -101,10 +113,7 @@ Tet_mesh_statistics_3 compute_tet_mesh_statistics(const Triangulation& tr, Domai
                                   c = internal::stat_difference(p[3], p[0]);
       s.volume += std::abs(internal::stat_dot(a, internal::stat_cross(b, c))) / 6;
     }
-    // The dihedral angle at edge (i, j) is between the facets (i, j, k) and (i, j, l).
-    static const int edge_others[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
-    for (const auto& e : edge_others) {
-      const double a = internal::stat_dihedral_angle(p[e[0]], p[e[1]], p[e[2]], p[e[3]]);
+    for (const double a : internal::stat_dihedral_angles(p)) {
       min_angle = std::min(min_angle, a);
       max_angle = std::max(max_angle, a);
     }
