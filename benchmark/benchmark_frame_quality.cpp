@@ -63,6 +63,9 @@
 #include <CGAL_ext/Frame_field_singularities_3.h>
 #include <CGAL_ext/Singular_curve_straightening_3.h>
 #include <CGAL_ext/IO/Fra_file.h>
+#include <CGAL_ext/IO/Hexex_file.h>
+#include <CGAL_ext/Integer_grid_map_3.h>
+#include <CGAL_ext/make_integer_grid_map_input.h>
 #include <CGAL_ext/IO/Medit_mesh.h>
 #include <CGAL_ext/IO/Perm_file.h>
 #include <CGAL_ext/Metric_field_3.h>
@@ -135,6 +138,10 @@ struct Hex_run {
   // the cube root of their volume over h, and the hexes made over those
   // that hexes of edge h would need to fill the volume.
   double size_ratio = 0, count_ratio = 0;
+  // The map's tetrahedra: with a negative parameter volume, and flat (below
+  // 1e-3 of the volume due, vol / h^3, the identity metric scaled).
+  std::size_t map_inverted = 0, map_flat = 0;
+  double map_seconds = 0; // the map's own time (integergrid's, or ours)
   bool meets_target() const { return error.empty() && inverted == 0 && coverage >= 0.99; }
 };
 
@@ -152,7 +159,8 @@ struct Quality {
   std::size_t singular_at_features = 0, singular_along_features = 0;
   double seconds_field = 0;
   // The hex meshes of CubeCover and HexEx, one per hex size (hex columns only).
-  std::vector<Hex_run> hex_runs;
+  // and of our integer-grid map and HexEx.
+  std::vector<Hex_run> hex_runs, our_runs;
 };
 
 // The hex tools, if the environment names them.
@@ -185,17 +193,77 @@ std::string shell_quote(const std::string& s) {
   return out + "'";
 }
 
+// The tetrahedra of a .hexex map that are inverted or flat in parameter space.
+void count_map_tets(const std::filesystem::path& file, double h, Hex_run& q) {
+  const CGAL_ext::IO::Hexex_file map = CGAL_ext::IO::read_hexex(file.string());
+  for (std::size_t t = 0; t < map.tets.size(); ++t) {
+    const auto& p = map.positions;
+    const auto& v = map.tets[t];
+    const auto& u = map.parameters[t];
+    Eigen::Matrix3d D, P;
+    D << p[v[1]] - p[v[0]], p[v[2]] - p[v[0]], p[v[3]] - p[v[0]];
+    P << u[1] - u[0], u[2] - u[0], u[3] - u[0];
+    const double pv = P.determinant(), due = D.determinant() / (h * h * h);
+    q.map_inverted += pv < 0;
+    q.map_flat += pv >= 0 && pv <= 1e-3 * due;
+  }
+}
+
+// HexEx on the map `dir/map_name`, then the quality script on its hexes.
+void extract_and_measure(const Hex_tools& tools, const std::filesystem::path& dir, const std::string& map_name, double h,
+                         Hex_run& q) {
+  auto path = [&](const std::string& name) { return shell_quote((dir / name).string()); };
+  if (q.error.empty()) count_map_tets(dir / map_name, h, q);
+  const std::string hx = shell_quote(tools.hexex) + " " + path(map_name) + " " + path(map_name + ".ovm") + " > " +
+                         path(map_name + ".log") + " 2>&1";
+  if (q.error.empty() && std::system(hx.c_str()) != 0) q.error = "hexex failed";
+  char hex_size[32];
+  std::snprintf(hex_size, sizeof hex_size, "%.17g", h);
+  const std::string json = map_name + ".quality.json";
+  const std::string qs = std::string("python3 ") + shell_quote(CGAL_EXT_HEX_QUALITY_SCRIPT) + " " +
+                         path(map_name + ".ovm") + " --tets " + path("mesh.mesh") + " --hex-size " + hex_size +
+                         " --json > " + path(json) + " 2> " + path(map_name + ".quality.log");
+  if (q.error.empty() && std::system(qs.c_str()) != 0) q.error = "no hex mesh";
+  if (!q.error.empty()) return;
+  const nlohmann::json j = nlohmann::json::parse(slurp(dir / json), nullptr, /*allow_exceptions=*/false);
+  const nlohmann::json& sj = j.is_object() ? j.value("scaled_jacobian", nlohmann::json::object()) : j;
+  if (!j.is_object() || !sj.is_object()) {
+    q.error = "unreadable " + json;
+    return;
+  }
+  q.hexes = std::size_t(json_number(j, "hexahedra"));
+  q.sj_min = json_number(sj, "min");
+  q.sj_median = json_number(sj, "median");
+  q.inverted = std::size_t(json_number(sj, "count_le_0"));
+  q.coverage = json_number(j, "coverage");
+  const auto c = j.find("coverage_ceiling");
+  q.ceiling = q.ceiling_at_h = std::nan("");
+  if (c != j.end() && c->is_object()) {
+    q.ceiling = json_number(*c, "estimate");
+    const auto at = c->find("at_hex_size");
+    if (at != c->end() && at->is_object()) q.ceiling_at_h = json_number(*at, "estimate");
+  }
+  q.size_ratio = q.count_ratio = std::nan("");
+  const auto z = j.find("size");
+  if (z != j.end() && z->is_object()) {
+    const auto e = z->find("edge_ratio");
+    if (e != z->end() && e->is_object()) q.size_ratio = json_number(*e, "median");
+    q.count_ratio = json_number(*z, "hexes_over_expected");
+  }
+}
+
 // Writes the field as generate does (hexes of edge h), runs integergrid and
-// HexEx, and measures the hexes. `matchings`: the field's, computed once for all sizes.
-Hex_run hex_pipeline(const Hex_tools& tools, const CGAL_ext::IO::Medit_mesh& mesh, const Frames& ff,
-                     const CGAL_ext::Frame_field_matchings_3<Frames>& matchings, double h,
-                     const std::vector<Eigen::Vector3d>* positions) {
+// HexEx, and our integer-grid map and HexEx, and measures both hex meshes.
+// `matchings`: the field's, computed once for all sizes.
+std::pair<Hex_run, Hex_run> hex_pipeline(const Hex_tools& tools, const CGAL_ext::IO::Medit_mesh& mesh, const Frames& ff,
+                                         const CGAL_ext::Frame_field_matchings_3<Frames>& matchings, double h,
+                                         const std::vector<Eigen::Vector3d>* positions) {
   namespace fs = std::filesystem;
   static int counter = 0;
   const fs::path dir = fs::temp_directory_path() /
                        ("cgal_ext_hex_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
   fs::create_directories(dir);
-  Hex_run q;
+  Hex_run q, ours;
   CGAL_ext::IO::Medit_mesh tets;
   tets.vertices = mesh.vertices;
   if (positions) // unused vertices have none (NaN)
@@ -216,46 +284,26 @@ Hex_run hex_pipeline(const Hex_tools& tools, const CGAL_ext::IO::Medit_mesh& mes
   auto path = [&](const char* name) { return shell_quote((dir / name).string()); };
   const std::string ig = shell_quote(tools.integergrid) + " " + path("mesh.mesh") + " " + path("frames.fra") + " " +
                          path("frames.perm") + " " + path("param.hexex") + " > " + path("integergrid.log") + " 2>&1";
+  auto t = std::chrono::steady_clock::now();
   if (std::system(ig.c_str()) != 0) q.error = "integergrid failed";
+  q.map_seconds = since(t);
   q.mip_failed = slurp(dir / "integergrid.log").find("Problem with MIP solve") != std::string::npos;
-  const std::string hx = shell_quote(tools.hexex) + " " + path("param.hexex") + " " + path("hex.ovm") + " > " +
-                         path("hexex.log") + " 2>&1";
-  if (q.error.empty() && std::system(hx.c_str()) != 0) q.error = "hexex failed";
-  char hex_size[32];
-  std::snprintf(hex_size, sizeof hex_size, "%.17g", h);
-  const std::string qs = std::string("python3 ") + shell_quote(CGAL_EXT_HEX_QUALITY_SCRIPT) + " " + path("hex.ovm") +
-                         " --tets " + path("mesh.mesh") + " --hex-size " + hex_size + " --json > " +
-                         path("quality.json") + " 2> " + path("quality.log");
-  if (q.error.empty() && std::system(qs.c_str()) != 0) q.error = "no hex mesh";
-  if (q.error.empty()) {
-    const nlohmann::json j = nlohmann::json::parse(slurp(dir / "quality.json"), nullptr, /*allow_exceptions=*/false);
-    const nlohmann::json& sj = j.is_object() ? j.value("scaled_jacobian", nlohmann::json::object()) : j;
-    if (!j.is_object() || !sj.is_object()) q.error = "unreadable quality.json";
-    else {
-      q.hexes = std::size_t(json_number(j, "hexahedra"));
-      q.sj_min = json_number(sj, "min");
-      q.sj_median = json_number(sj, "median");
-      q.inverted = std::size_t(json_number(sj, "count_le_0"));
-      q.coverage = json_number(j, "coverage");
-      const auto c = j.find("coverage_ceiling");
-      q.ceiling = q.ceiling_at_h = std::nan("");
-      if (c != j.end() && c->is_object()) {
-        q.ceiling = json_number(*c, "estimate");
-        const auto at = c->find("at_hex_size");
-        if (at != c->end() && at->is_object()) q.ceiling_at_h = json_number(*at, "estimate");
-      }
-      q.size_ratio = q.count_ratio = std::nan("");
-      const auto z = j.find("size");
-      if (z != j.end() && z->is_object()) {
-        const auto e = z->find("edge_ratio");
-        if (e != z->end() && e->is_object()) q.size_ratio = json_number(*e, "median");
-        q.count_ratio = json_number(*z, "hexes_over_expected");
-      }
-    }
-  }
-  if (q.error.empty()) fs::remove_all(dir);
-  else q.error += " (files in " + dir.string() + ")";
-  return q;
+  extract_and_measure(tools, dir, "param.hexex", h, q);
+
+  // Ours, on the same mesh (the vertices written) and field.
+  t = std::chrono::steady_clock::now();
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& v : tets.vertices) points.push_back({v[0], v[1], v[2]});
+  const CGAL_ext::Integer_grid_map_input in = CGAL_ext::make_integer_grid_map_input(ff, matchings, points, h);
+  const CGAL_ext::Integer_grid_map map = CGAL_ext::compute_integer_grid_map(in);
+  ours.map_seconds = since(t);
+  CGAL_ext::IO::write_hexex((dir / "ours.hexex").string(), {in.positions, in.tets, map.parameters});
+  extract_and_measure(tools, dir, "ours.hexex", h, ours);
+
+  if (q.error.empty() && ours.error.empty()) fs::remove_all(dir);
+  for (Hex_run* r : {&q, &ours})
+    if (!r->error.empty()) r->error += " (files in " + dir.string() + ")";
+  return {q, ours};
 }
 
 // The measures of a computed field; `seconds`: the time it took (the time
@@ -333,34 +381,35 @@ Quality measure(const Tr& tr, const Field& field, const Frames& ff, double secon
     q.singular_along_features += at && on_boundary[e.vertices[0]] && on_boundary[e.vertices[1]];
   }
   if (tools.enabled())
-    for (int k = 0; k < tools.sizes; ++k) q.hex_runs.push_back(hex_pipeline(tools, mesh, ff, matchings, tools.size(h, k), moved));
+    for (int k = 0; k < tools.sizes; ++k) {
+      const auto [theirs, ours] = hex_pipeline(tools, mesh, ff, matchings, tools.size(h, k), moved);
+      q.hex_runs.push_back(theirs);
+      q.our_runs.push_back(ours);
+    }
   return q;
 }
 
-void print_row(const std::string& name, const char* variant, const Quality& q, double seconds_mesh) {
-  std::printf("%-22s %-12s %8zu %6zu %5zu %5zu %5zu %6zu %5zu %6zu %5zu %5zu %5zu %8.3f %8.3f %8.4f %7.3f %7.2f %6zu %6zu "
-              "%7.2f %7.2f %5zu %5zu %7.1f %7.1f\n",
-              name.c_str(), variant, q.tets, q.singular, q.plus, q.minus, q.non_meshable, q.curves, q.nodes,
-              q.interior_ends, q.non_meshable_nodes, q.surface_touches, q.short_curves, q.angle_mean, q.angle_median,
-              q.energy_per_weight, q.align_mean, q.align_max,
-              q.feature_edges, q.corners, q.tangent_error_mean, q.tangent_error_max, q.singular_at_features,
-              q.singular_along_features, seconds_mesh, q.seconds_field);
-  if (q.hex_runs.size() == 1) {
-    const Hex_run& r = q.hex_runs[0];
+// The hex meshes of one map (integergrid's or ours) over the sizes.
+void print_hex_runs(const std::string& name, const char* variant, const char* map, const std::vector<Hex_run>& runs) {
+  if (runs.size() == 1) {
+    const Hex_run& r = runs[0];
     if (!r.error.empty())
-      std::printf("%-22s %-12s   hex pipeline: %s\n", name.c_str(), variant, r.error.c_str());
+      std::printf("%-22s %-12s   %s: hex pipeline: %s\n", name.c_str(), variant, map, r.error.c_str());
     else
-      std::printf("%-22s %-12s   hexes %zu (%.2f of the count asked for, median size %.2f h), scaled Jacobian "
-                  "min %.3f median %.3f, <= 0: %zu, coverage %.4f (ceiling %.4f, at the size asked for %.4f%s)%s\n",
-                  name.c_str(), variant, r.hexes, r.count_ratio, r.size_ratio, r.sj_min, r.sj_median, r.inverted,
+      std::printf("%-22s %-12s   %s (%.2f s): %zu inverted and %zu flat tets; hexes %zu (%.2f of the count asked "
+                  "for, median size %.2f h), scaled Jacobian min %.3f median %.3f, <= 0: %zu, coverage %.4f (ceiling "
+                  "%.4f, at the size asked for %.4f%s)%s\n",
+                  name.c_str(), variant, map, r.map_seconds, r.map_inverted, r.map_flat, r.hexes, r.count_ratio, r.size_ratio, r.sj_min, r.sj_median, r.inverted,
                   r.coverage, r.ceiling, r.ceiling_at_h, r.ceiling_at_h < 0.99 ? ": 0.99 out of reach" : "",
                   r.mip_failed ? " (MIP)" : "");
-  } else if (q.hex_runs.size() > 1) {
+  } else if (runs.size() > 1) {
     std::vector<double> coverage, hexes, ceiling, ceiling_at_h, size_ratio, count_ratio;
     double sj_min = 1;
-    std::size_t inverted = 0, met = 0, mip = 0;
-    for (const Hex_run& r : q.hex_runs) {
+    std::size_t inverted = 0, met = 0, mip = 0, map_inverted = 0, map_flat = 0;
+    for (const Hex_run& r : runs) {
       mip += r.mip_failed;
+      map_inverted = std::max(map_inverted, r.map_inverted);
+      map_flat = std::max(map_flat, r.map_flat);
       if (!r.error.empty()) continue;
       coverage.push_back(r.coverage);
       if (std::isfinite(r.ceiling)) ceiling.push_back(r.ceiling);
@@ -372,10 +421,10 @@ void print_row(const std::string& name, const char* variant, const Quality& q, d
       inverted = std::max(inverted, r.inverted);
       met += r.meets_target();
     }
-    const std::size_t n = q.hex_runs.size();
+    const std::size_t n = runs.size();
     if (coverage.empty()) {
-      std::printf("%-22s %-12s   hex pipeline: no hex mesh at any of %zu sizes (first: %s)\n", name.c_str(), variant, n,
-                  q.hex_runs[0].error.c_str());
+      std::printf("%-22s %-12s   %s: hex pipeline: no hex mesh at any of %zu sizes (first: %s)\n", name.c_str(),
+                  variant, map, n, runs[0].error.c_str());
       return;
     }
     auto median = [](std::vector<double> v) {
@@ -385,16 +434,28 @@ void print_row(const std::string& name, const char* variant, const Quality& q, d
     };
     const double c = median(ceiling), c_at_h = median(ceiling_at_h);
     const double size = median(size_ratio), count = median(count_ratio);
-    std::printf("%-22s %-12s   %zu sizes, %zu hex meshes: hexes %.0f (%.0f-%.0f; %.2f of the count asked for, "
+    std::printf("%-22s %-12s   %s: most inverted and flat tets %zu and %zu; %zu sizes, %zu hex meshes: hexes %.0f (%.0f-%.0f; %.2f of the count asked for, "
                 "median size %.2f h), coverage %.4f (%.4f-%.4f), ceiling %.4f (at the sizes asked for %.4f), "
                 "scaled Jacobian min %.3f, most <= 0: %zu, target met %zu of %zu%s%s\n",
-                name.c_str(), variant, n, coverage.size(), median(hexes),
+                name.c_str(), variant, map, map_inverted, map_flat, n, coverage.size(), median(hexes),
                 *std::min_element(hexes.begin(), hexes.end()), *std::max_element(hexes.begin(), hexes.end()), count, size,
                 median(coverage), *std::min_element(coverage.begin(), coverage.end()),
                 *std::max_element(coverage.begin(), coverage.end()), c, c_at_h, sj_min, inverted, met, n,
                 c_at_h < 0.99 ? " (coverage 0.99 out of reach at these sizes)" : "",
                 mip ? (" (" + std::to_string(mip) + " MIP)").c_str() : "");
   }
+}
+
+void print_row(const std::string& name, const char* variant, const Quality& q, double seconds_mesh) {
+  std::printf("%-22s %-12s %8zu %6zu %5zu %5zu %5zu %6zu %5zu %6zu %5zu %5zu %5zu %8.3f %8.3f %8.4f %7.3f %7.2f %6zu %6zu "
+              "%7.2f %7.2f %5zu %5zu %7.1f %7.1f\n",
+              name.c_str(), variant, q.tets, q.singular, q.plus, q.minus, q.non_meshable, q.curves, q.nodes,
+              q.interior_ends, q.non_meshable_nodes, q.surface_touches, q.short_curves, q.angle_mean, q.angle_median,
+              q.energy_per_weight, q.align_mean, q.align_max,
+              q.feature_edges, q.corners, q.tangent_error_mean, q.tangent_error_max, q.singular_at_features,
+              q.singular_along_features, seconds_mesh, q.seconds_field);
+  print_hex_runs(name, variant, "integergrid", q.hex_runs);
+  print_hex_runs(name, variant, "our map", q.our_runs);
 }
 
 // The four variants of one model: no repair, repaired, straightened (generate's output), no features.

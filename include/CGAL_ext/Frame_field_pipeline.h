@@ -19,6 +19,7 @@
 #include <CGAL_ext/Singular_curve_straightening_3.h>
 #include <CGAL_ext/IO/Medit_mesh.h>
 #include <CGAL_ext/Input_error.h>
+#include <CGAL_ext/Integer_grid_map_3.h>
 #include <CGAL_ext/Metric_field_3.h>
 #include <CGAL_ext/Tet_mesh_triangulation_3.h>
 #include <CGAL_ext/build_triangulation_from_tets.h>
@@ -275,8 +276,41 @@ Pipeline_frame_field generate_pipeline_frame_field(
     const std::optional<Singular_curve_straightening_options>& straightening = std::nullopt);
 
 /// \ingroup PkgCGALExtPipeline
+/// The integer-grid map of the pipeline's field and what it was computed on.
+struct Pipeline_integer_grid_map {
+  /// The mesh and the field as the map took them
+  /// (`pipeline_integer_grid_map_input()`).
+  Integer_grid_map_input input;
+  /// The map.
+  Integer_grid_map map;
+};
+
+/// \ingroup PkgCGALExtPipeline
+/// The map's input from the pipeline's field (`make_integer_grid_map_input()`)
+/// with the positions the outputs use: the straightened ones where a vertex
+/// moved, else the mesh's. The metric is already scaled to the hex size.
+/// \param mesh the tet mesh
+/// \param frames the frame field and its matchings
+/// \returns the input of `compute_integer_grid_map()`
+Integer_grid_map_input pipeline_integer_grid_map_input(const Pipeline_tet_mesh& mesh, const Pipeline_frame_field& frames);
+
+/// \ingroup PkgCGALExtPipeline
+/// Computes the integer-grid map of the pipeline's field
+/// (`compute_integer_grid_map()` on `pipeline_integer_grid_map_input()`).
+/// \param mesh the tet mesh
+/// \param frames the frame field and its matchings
+/// \param options the map's options
+/// \param stage if set, called after the stage `integer-grid map`
+/// \returns the map and its input
+Pipeline_integer_grid_map compute_pipeline_integer_grid_map(const Pipeline_tet_mesh& mesh,
+                                                            const Pipeline_frame_field& frames,
+                                                            const Integer_grid_map_options& options = {},
+                                                            const Pipeline_stage_callback& stage = {});
+
+/// \ingroup PkgCGALExtPipeline
 /// The names of the files that `write_pipeline_outputs()` and
-/// `write_pipeline_report()` write into the output directory.
+/// `write_pipeline_report()` write into the output directory (`map.hexex`
+/// only with an integer-grid map).
 /// \returns the file names, `report.json` last
 const std::vector<std::string>& pipeline_output_names();
 
@@ -295,13 +329,16 @@ void check_pipeline_output_directory(const std::string& directory, const std::ve
 /// \ingroup PkgCGALExtPipeline
 /// Writes `frames.fra`, `frames.perm`, `mesh.mesh`, `frames.vtu` and
 /// `singularities.vtu` into `directory` (created if missing), each file
-/// atomically (see `output_files.md`).
+/// atomically (see `output_files.md`); with a map, also `map.hexex`
+/// (`IO::write_hexex()`, the tetrahedra as in `mesh.mesh`) and the cell
+/// array `parameters` of `frames.vtu`.
 /// \param directory the output directory
 /// \param mesh the tet mesh
 /// \param frames the frame field and its singularities
+/// \param map the integer-grid map, or null
 /// \throws std::runtime_error if the directory cannot be created or a file cannot be written
 void write_pipeline_outputs(const std::string& directory, const Pipeline_tet_mesh& mesh,
-                            const Pipeline_frame_field& frames);
+                            const Pipeline_frame_field& frames, const Pipeline_integer_grid_map* map = nullptr);
 
 /// \ingroup PkgCGALExtPipeline
 /// What the report names besides the results: the input, the options and the
@@ -315,6 +352,8 @@ struct Pipeline_report_context {
   std::vector<std::pair<std::string, double>> stage_seconds;
   /// How thin the domain is, if it was measured (`measure_pipeline_thickness()`).
   std::optional<Pipeline_thickness> thickness;
+  /// The integer-grid map's report, if a map was computed.
+  std::optional<Integer_grid_map_report> integer_grid_map;
 };
 
 /// \ingroup PkgCGALExtPipeline

@@ -135,6 +135,34 @@ inline nlohmann::ordered_json pipeline_thickness_json(const std::optional<Pipeli
           {"thickness_at_10_percent_hex_edges", t->thickness_at_10_percent}};
 }
 
+// The "integer_grid_map" object.
+inline nlohmann::ordered_json pipeline_integer_grid_map_json(const Integer_grid_map_report& m) {
+  return {{"cut_faces_tree", m.cut_faces_tree},
+          {"cut_faces", m.cut_faces},
+          {"cut_vertices", m.cut_vertices},
+          {"singular_edges", m.singular_edges},
+          {"singular_edges_on_grid_lines", m.singular_edges_on_grid_lines},
+          {"singular_edges_unconstrained", m.singular_edges_unconstrained},
+          {"boundary_faces_constrained", m.boundary_faces_constrained},
+          {"boundary_faces_free", m.boundary_faces_free},
+          {"variables", m.solver.variables},
+          {"equalities", m.solver.equalities},
+          {"redundant_equalities", m.solver.redundant_equalities},
+          {"free_variables", m.solver.free_variables},
+          {"integer_variables", m.solver.integer_variables},
+          {"free_integer_variables", m.solver.free_integer_variables},
+          {"non_integral_eliminated", m.solver.non_integral_eliminated},
+          {"solves", m.solver.solves},
+          {"fit_error_relaxed", m.fit_error_relaxed},
+          {"fit_error", m.fit_error},
+          {"parameter_volume", m.parameter_volume},
+          {"due_volume", m.due_volume},
+          {"inverted_tets", m.inverted_tets},
+          {"flat_tets", m.flat_tets},
+          {"seconds_setup", m.seconds_setup},
+          {"seconds_solve", m.seconds_solve}};
+}
+
 // The "hex_coverage_ceiling" object: numbers, null where not finite; the
 // factor is left out when every hex size reaches 0.99 (it is +infinity).
 inline nlohmann::ordered_json pipeline_coverage_ceiling_json(const Pipeline_frame_field& frames) {
@@ -153,7 +181,8 @@ inline nlohmann::ordered_json pipeline_coverage_ceiling_json(const Pipeline_fram
 /// value whose keys keep their documented order: input and metric, hex size,
 /// expected hexes, counts, singular edges, curves and nodes, energies, face
 /// angles, alignment, sharp features, coverage ceiling, thickness, repair,
-/// straightening, iterations and timings. Numbers are written by nlohmann-json, in
+/// straightening, integer-grid map (only if one was computed), iterations
+/// and timings. Numbers are written by nlohmann-json, in
 /// the shortest form that reads back as the same double; a number that is
 /// not finite is `null`. Header-only: it needs nlohmann-json.
 ///
@@ -171,7 +200,7 @@ inline nlohmann::ordered_json pipeline_report(const Pipeline_tet_mesh& mesh, con
   const Face_angle_statistics& angles = frames.face_angles;
   nlohmann::ordered_json stage_seconds = nlohmann::ordered_json::object();
   for (const auto& [name, s] : context.stage_seconds) stage_seconds[name] = s;
-  return {
+  nlohmann::ordered_json report = {
       {"input", context.input},
       {"metric", metric.name},
       {"hex_size", metric.scaled ? nlohmann::ordered_json(metric.hex_size) : nlohmann::ordered_json(nullptr)},
@@ -213,6 +242,15 @@ inline nlohmann::ordered_json pipeline_report(const Pipeline_tet_mesh& mesh, con
       {"linear_residual", st.linear_residual},
       {"refinement_iterations", st.refinement_iterations},
       {"stage_seconds", stage_seconds}};
+  if (!context.integer_grid_map) return report;
+  // The map's object after "straightening", only when a map was computed.
+  nlohmann::ordered_json with_map;
+  for (auto it = report.begin(); it != report.end(); ++it) {
+    with_map[it.key()] = it.value();
+    if (it.key() == "straightening")
+      with_map["integer_grid_map"] = internal::pipeline_integer_grid_map_json(*context.integer_grid_map);
+  }
+  return with_map;
 }
 
 /// \ingroup PkgCGALExtPipeline

@@ -25,6 +25,10 @@
 /// \defgroup PkgCGALExtFrames Octahedral frame fields
 /// SH band-4 frames, frame-field generation in a metric, singular edges.
 
+/// \defgroup PkgCGALExtHex Integer-grid maps and hexahedra
+/// The parametrization whose integer grid the hexahedra are: seamless,
+/// aligned with the boundary, quantized; its solver and its files.
+
 /// \defgroup PkgCGALExtPipeline The generate pipeline
 /// Mesh, metric, frame field, singularities and output files, as the
 /// `metric-frames generate` command chains them, callable from C++.

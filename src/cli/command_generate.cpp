@@ -191,9 +191,15 @@ int run_generate(const Generate_request& r) {
   const Pipeline_frame_field frames =
       generate_pipeline_frame_field(field, plan.options, repair_options, stage, straightening);
 
+  std::optional<Pipeline_integer_grid_map> map;
+  if (r.hexes) {
+    map = compute_pipeline_integer_grid_map(mesh, frames, {}, stage);
+    context.integer_grid_map = map->map.report;
+  }
+
   CGAL::Real_timer write_timer;
   write_timer.start();
-  write_pipeline_outputs(r.out_dir, mesh, frames);
+  write_pipeline_outputs(r.out_dir, mesh, frames, map ? &*map : nullptr);
   stage("write outputs", write_timer.time(), r.out_dir);
   write_timer.reset();
   const std::string report =

@@ -58,7 +58,8 @@ int run_metric(const Metric_request& request);
 /// `metric-frames generate INPUT [--metric SOL | --metric-const M | --metric-expr E] -o OUTDIR [options]`.
 struct Generate_request {
   std::string input, out_dir;
-  bool force = false, no_repair = false, smooth_surface = false, soft_boundary = false, keep_vertices = false;
+  bool force = false, no_repair = false, smooth_surface = false, soft_boundary = false, keep_vertices = false,
+       hexes = false;
   std::optional<std::string> sol_path, metric_const, metric_expr;
   std::optional<double> hex_size, size, max_memory;
   std::size_t threads = 0; ///< 0: all cores

@@ -341,6 +341,9 @@ CLI::App* add_generate(CLI::App& app, Generate_request& r) {
       ->transform(whole_number(0, 1e6))
       ->excludes(no_repair)
       ->capture_default_str();
+  sub.add_flag("--hexes", r.hexes,
+               "also compute the integer-grid map of the field (map.hexex: HexEx's input; the parameters in "
+               "frames.vtu; report.json's integer_grid_map)");
   sub.add_flag("--keep-vertices", r.keep_vertices,
                "write the mesh's vertices where they are (default: move the singular curves' interior vertices "
                "towards straight curves, which an integer-grid map meshes with fewer inverted hexes)");

@@ -9,6 +9,7 @@
 #include "../IO/write_file_atomically.h"
 
 #include <CGAL_ext/IO/Fra_file.h>
+#include <CGAL_ext/IO/Hexex_file.h>
 #include <CGAL_ext/IO/Medit_mesh.h>
 #include <CGAL_ext/IO/Perm_file.h>
 #include <CGAL_ext/IO/Vtu_file.h>
@@ -40,9 +41,23 @@ int type_code(Singularity_type t) {
   }
 }
 
-// frames.fra, frames.perm, frames.vtu: per tet, the gradients, matchings and edges.
+// The map's parameters with the corners in the order of `mesh`'s
+// tetrahedra (the map has the triangulation's order, an even permutation
+// of it: both are positively oriented).
+std::vector<std::array<Eigen::Vector3d, 4>> parameters_in_mesh_order(const IO::Medit_mesh& mesh,
+                                                                      const Pipeline_integer_grid_map& map) {
+  std::vector<std::array<Eigen::Vector3d, 4>> out(mesh.tetrahedra.size());
+  for (std::size_t t = 0; t < out.size(); ++t)
+    for (std::size_t c = 0; c < 4; ++c)
+      for (std::size_t l = 0; l < 4; ++l)
+        if (map.input.tets[t][l] == mesh.tetrahedra[t][c]) out[t][c] = map.map.parameters[t][l];
+  return out;
+}
+
+// frames.fra, frames.perm, frames.vtu: per tet, the gradients, matchings and
+// edges (and the map's parameters, if any).
 void write_frame_files(const std::filesystem::path& dir, const IO::Medit_mesh& mesh, const Frames& ff,
-                       const Matchings& matchings) {
+                       const Matchings& matchings, const std::vector<std::array<Eigen::Vector3d, 4>>* parameters) {
   const std::size_t nt = ff.size();
   std::vector<std::array<double, 9>> gradients(nt);
   std::array<IO::Vtu_array, 3> edge{{{"hex_edge_1", 3, {}}, {"hex_edge_2", 3, {}}, {"hex_edge_3", 3, {}}}};
@@ -77,9 +92,15 @@ void write_frame_files(const std::filesystem::path& dir, const IO::Medit_mesh& m
   IO::write_fra((dir / "frames.fra").string(), gradients);
   IO::write_perm((dir / "frames.perm").string(), matchings.perm_file(ff));
   IO::write_medit_mesh((dir / "mesh.mesh").string(), mesh);
-  IO::write_vtu_tetrahedra((dir / "frames.vtu").string(), mesh.vertices, mesh.tetrahedra,
-                           {edge[0], edge[1], edge[2], grad[0], grad[1], grad[2], gm, density, boundary, align, hard_axes,
-                            released});
+  std::vector<IO::Vtu_array> cell_data = {edge[0], edge[1], edge[2], grad[0], grad[1], grad[2],
+                                          gm,      density, boundary, align,   hard_axes, released};
+  if (parameters) {
+    IO::Vtu_array u{"parameters", 12, {}};
+    for (const auto& tet : *parameters)
+      for (const Eigen::Vector3d& p : tet) u.values.insert(u.values.end(), {p(0), p(1), p(2)});
+    cell_data.push_back(std::move(u));
+  }
+  IO::write_vtu_tetrahedra((dir / "frames.vtu").string(), mesh.vertices, mesh.tetrahedra, cell_data);
 }
 
 // singularities.vtu: the singular edges as lines, nodes as point data.
@@ -134,8 +155,8 @@ void write_singularities_vtu(const std::string& path, const IO::Medit_mesh& mesh
 } // namespace
 
 const std::vector<std::string>& pipeline_output_names() {
-  static const std::vector<std::string> names = {"frames.fra", "frames.perm", "mesh.mesh", "frames.vtu",
-                                                 "singularities.vtu", "report.json"};
+  static const std::vector<std::string> names = {"frames.fra",        "frames.perm", "mesh.mesh", "frames.vtu",
+                                                 "singularities.vtu", "map.hexex",   "report.json"};
   return names;
 }
 
@@ -158,7 +179,7 @@ void check_pipeline_output_directory(const std::string& directory, const std::ve
 }
 
 void write_pipeline_outputs(const std::string& directory, const Pipeline_tet_mesh& mesh,
-                            const Pipeline_frame_field& frames) {
+                            const Pipeline_frame_field& frames, const Pipeline_integer_grid_map* map) {
   std::error_code ec;
   std::filesystem::create_directories(directory, ec);
   if (ec) throw std::runtime_error(directory + ": cannot create the output directory: " + ec.message());
@@ -173,8 +194,17 @@ void write_pipeline_outputs(const std::string& directory, const Pipeline_tet_mes
         for (int c = 0; c < 3; ++c) moved->vertices[v][std::size_t(c)] = frames.positions[v](c);
   }
   const IO::Medit_mesh& written = moved ? *moved : mesh.mesh;
-  write_frame_files(dir, written, *frames.frames, *frames.matchings);
+  std::optional<std::vector<std::array<Eigen::Vector3d, 4>>> parameters;
+  if (map) parameters = parameters_in_mesh_order(written, *map);
+  write_frame_files(dir, written, *frames.frames, *frames.matchings, parameters ? &*parameters : nullptr);
   write_singularities_vtu((dir / "singularities.vtu").string(), written, frames.singular_edges, frames.graph);
+  if (map) {
+    IO::Hexex_file file;
+    for (const auto& v : written.vertices) file.positions.push_back({v[0], v[1], v[2]});
+    file.tets = written.tetrahedra;
+    file.parameters = std::move(*parameters);
+    IO::write_hexex((dir / "map.hexex").string(), file);
+  }
 }
 
 std::string write_pipeline_report(const std::string& directory, const std::string& json) {
@@ -282,6 +312,13 @@ std::string pipeline_summary_text(const Pipeline_tet_mesh& mesh, const Pipeline_
     text += buf;
   }
   if (graph.short_curves.size() > 5) text += "    ... (all in report.json)\n";
+  if (context.integer_grid_map) {
+    const Integer_grid_map_report& m = *context.integer_grid_map;
+    std::snprintf(buf, sizeof buf,
+                  "  %-32s %zu inverted, %zu flat tetrahedra; parameter volume %.6g of %.6g due; fit error %.3g\n",
+                  "integer-grid map", m.inverted_tets, m.flat_tets, m.parameter_volume, m.due_volume, m.fit_error);
+    text += buf;
+  }
   return text;
 }
 

@@ -1,0 +1,296 @@
+// Copyright (c) 2026 CGAL Metric Frames contributors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#include <CGAL_ext/Mixed_integer_quadratic_solver.h>
+
+#include <Eigen/SparseCholesky>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace CGAL_ext {
+namespace {
+
+using Terms = std::vector<std::pair<std::size_t, double>>;
+
+// An eliminated variable: sum of coefficients times free variables, plus a constant.
+struct Expression {
+  Terms terms; // sorted by variable, no zero coefficient
+  double constant = 0;
+};
+
+// Sorts terms by variable, adds up repeats and drops the coefficients that
+// cancelled (relative to the largest one).
+void normalize(Terms& t) {
+  std::sort(t.begin(), t.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  Terms out;
+  double largest = 0;
+  for (const auto& [i, a] : t) {
+    if (!out.empty() && out.back().first == i)
+      out.back().second += a;
+    else
+      out.push_back({i, a});
+    largest = std::max(largest, std::abs(a));
+  }
+  const double cut = 1e-12 * std::max(1.0, largest);
+  t.clear();
+  for (const auto& term : out)
+    if (std::abs(term.second) > cut) t.push_back(term);
+}
+
+bool is_integral(double a) { return std::abs(a - std::round(a)) <= 1e-9 * std::max(1.0, std::abs(a)); }
+
+// Gaussian elimination of the equalities into expressions of the free variables.
+class Eliminator {
+public:
+  Eliminator(std::size_t n, const std::vector<char>& is_integer)
+      : is_integer_(is_integer), eliminated_(n, 0), non_unit_(n, 0), expression_(n), users_(n) {}
+
+  // Returns false if the equality was redundant.
+  bool add(const Linear_equality& eq, std::size_t number) {
+    Terms row;
+    double rhs = eq.rhs;
+    for (const auto& [i, a] : eq.terms) {
+      if (!eliminated_[i]) {
+        row.push_back({i, a});
+        continue;
+      }
+      for (const auto& [q, c] : expression_[i].terms) row.push_back({q, a * c});
+      rhs -= a * expression_[i].constant;
+    }
+    normalize(row);
+    if (row.empty()) {
+      if (std::abs(rhs) > 1e-9 * std::max(1.0, std::abs(eq.rhs)))
+        throw std::runtime_error("solve_mixed_integer_quadratic: equality " + std::to_string(number + 1) +
+                                 " contradicts the ones before it (residual " + std::to_string(rhs) + ")");
+      return false;
+    }
+    const std::size_t k = pivot(row);
+    const std::size_t p = row[k].first;
+    const double ap = row[k].second;
+    Expression e;
+    e.constant = rhs / ap;
+    for (std::size_t m = 0; m < row.size(); ++m)
+      if (m != k) e.terms.push_back({row[m].first, -row[m].second / ap});
+    if (is_integer_[p] && !(std::abs(std::abs(ap) - 1) < 1e-12 && is_integral(e.constant) &&
+                            std::all_of(e.terms.begin(), e.terms.end(), [&](const auto& t) {
+                              return is_integer_[t.first] && is_integral(t.second);
+                            })))
+      non_unit_[p] = 1;
+    substitute(p, e);
+    for (const auto& t : e.terms) users_[t.first].push_back(p);
+    expression_[p] = std::move(e);
+    eliminated_[p] = 1;
+    return true;
+  }
+
+  bool eliminated(std::size_t i) const { return eliminated_[i] != 0; }
+  bool non_unit(std::size_t i) const { return non_unit_[i] != 0; }
+  const Expression& expression(std::size_t i) const { return expression_[i]; }
+
+private:
+  // A real variable if any (with a coefficient not too small against the
+  // row's largest), else an integer one with a unit coefficient and integral
+  // other terms; among those, the one fewest expressions use.
+  std::size_t pivot(const Terms& row) const {
+    double largest = 0;
+    for (const auto& t : row) largest = std::max(largest, std::abs(t.second));
+    bool any_real = false;
+    for (const auto& t : row)
+      if (!is_integer_[t.first] && std::abs(t.second) >= 0.1 * largest) any_real = true;
+    bool all_integral = true;
+    for (const auto& t : row) all_integral = all_integral && is_integral(t.second);
+    std::size_t best = row.size();
+    auto better = [&](std::size_t m) {
+      if (best == row.size()) return true;
+      const std::size_t um = users_[row[m].first].size(), ub = users_[row[best].first].size();
+      if (um != ub) return um < ub;
+      return std::abs(row[m].second) > std::abs(row[best].second);
+    };
+    for (std::size_t m = 0; m < row.size(); ++m) {
+      const bool integer = is_integer_[row[m].first] != 0;
+      const double a = std::abs(row[m].second);
+      bool candidate;
+      if (any_real)
+        candidate = !integer && a >= 0.1 * largest;
+      else
+        candidate = all_integral && std::abs(a - 1) < 1e-12;
+      if (candidate && better(m)) best = m;
+    }
+    if (best == row.size()) // integer variables without a unit pivot: the largest coefficient
+      for (std::size_t m = 0; m < row.size(); ++m)
+        if (best == row.size() || std::abs(row[m].second) > std::abs(row[best].second)) best = m;
+    return best;
+  }
+
+  // Replaces p by e in every expression that uses p.
+  void substitute(std::size_t p, const Expression& e) {
+    std::vector<std::size_t> users;
+    users.swap(users_[p]);
+    for (std::size_t u : users) {
+      Expression& x = expression_[u];
+      auto it = std::lower_bound(x.terms.begin(), x.terms.end(), p,
+                                 [](const auto& t, std::size_t v) { return t.first < v; });
+      if (it == x.terms.end() || it->first != p) continue; // a stale or repeated entry
+      const double c = it->second;
+      x.terms.erase(it);
+      for (const auto& [q, a] : e.terms) {
+        x.terms.push_back({q, c * a});
+        users_[q].push_back(u);
+      }
+      x.constant += c * e.constant;
+      normalize(x.terms);
+    }
+  }
+
+  const std::vector<char>& is_integer_;
+  std::vector<char> eliminated_, non_unit_;
+  std::vector<Expression> expression_;
+  std::vector<std::vector<std::size_t>> users_;
+};
+
+void check(const Mixed_integer_quadratic_problem& pb) {
+  const auto n = std::size_t(pb.H.rows());
+  auto fail = [](const std::string& what) {
+    throw std::invalid_argument("solve_mixed_integer_quadratic: " + what);
+  };
+  if (std::size_t(pb.H.cols()) != n || std::size_t(pb.b.size()) != n) fail("H must be n x n and b of size n");
+  if (!pb.b.allFinite()) fail("b has a value that is not finite");
+  for (int k = 0; k < pb.H.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(pb.H, k); it; ++it)
+      if (!std::isfinite(it.value())) fail("H has a value that is not finite");
+  for (std::size_t e = 0; e < pb.equalities.size(); ++e) {
+    if (!std::isfinite(pb.equalities[e].rhs)) fail("equality " + std::to_string(e + 1) + " has a right-hand side that is not finite");
+    for (const auto& [i, a] : pb.equalities[e].terms)
+      if (i >= n || !std::isfinite(a)) fail("equality " + std::to_string(e + 1) + " has a term out of range or not finite");
+  }
+  for (std::size_t i : pb.integer_variables)
+    if (i >= n) fail("integer variable " + std::to_string(i) + " is out of range");
+}
+
+// The reduced system y -> x = E y + c, with Hr = E^T H E and br = E^T (b - H c).
+struct Reduced {
+  Eigen::SparseMatrix<double> E, Hr;
+  Eigen::VectorXd c, br;
+  std::vector<std::size_t> free; // column -> variable
+};
+
+Reduced reduce(const Mixed_integer_quadratic_problem& pb, const Eliminator& elim, double regularization) {
+  const std::size_t n = std::size_t(pb.H.rows());
+  Reduced r;
+  std::vector<std::size_t> column(n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    if (!elim.eliminated(i)) column[i] = r.free.size(), r.free.push_back(i);
+  std::vector<Eigen::Triplet<double>> t;
+  r.c = Eigen::VectorXd::Zero(Eigen::Index(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!elim.eliminated(i)) {
+      t.emplace_back(int(i), int(column[i]), 1.0);
+      continue;
+    }
+    const Expression& e = elim.expression(i);
+    r.c[Eigen::Index(i)] = e.constant;
+    for (const auto& [q, a] : e.terms) t.emplace_back(int(i), int(column[q]), a);
+  }
+  r.E.resize(Eigen::Index(n), Eigen::Index(r.free.size()));
+  r.E.setFromTriplets(t.begin(), t.end());
+  const Eigen::SparseMatrix<double> Et = r.E.transpose();
+  r.Hr = Et * (pb.H * r.E);
+  r.br = Et * (pb.b - pb.H * r.c);
+  double mean_diagonal = 0;
+  for (Eigen::Index k = 0; k < r.Hr.rows(); ++k) mean_diagonal += r.Hr.coeff(k, k);
+  mean_diagonal = r.Hr.rows() > 0 ? mean_diagonal / double(r.Hr.rows()) : 1;
+  Eigen::SparseMatrix<double> I(r.Hr.rows(), r.Hr.cols());
+  I.setIdentity();
+  r.Hr += (regularization * (mean_diagonal > 0 ? mean_diagonal : 1)) * I;
+  r.Hr.makeCompressed();
+  return r;
+}
+
+double objective(const Mixed_integer_quadratic_problem& pb, const Eigen::VectorXd& x) {
+  return x.dot(pb.H * x) - 2 * pb.b.dot(x);
+}
+
+} // namespace
+
+Mixed_integer_quadratic_solution solve_mixed_integer_quadratic(const Mixed_integer_quadratic_problem& pb,
+                                                               const Mixed_integer_quadratic_options& options) {
+  check(pb);
+  const std::size_t n = std::size_t(pb.H.rows());
+  Mixed_integer_quadratic_solution out;
+  auto& rep = out.report;
+  rep.variables = n;
+  rep.equalities = pb.equalities.size();
+  std::vector<char> is_integer(n, 0);
+  for (std::size_t i : pb.integer_variables) is_integer[i] = 1;
+  rep.integer_variables = pb.integer_variables.size();
+
+  Eliminator elim(n, is_integer);
+  for (std::size_t e = 0; e < pb.equalities.size(); ++e)
+    if (!elim.add(pb.equalities[e], e)) ++rep.redundant_equalities;
+  const Reduced r = reduce(pb, elim, options.regularization);
+  const std::size_t m = r.free.size();
+  rep.free_variables = m;
+
+  std::vector<std::size_t> integer_columns;
+  for (std::size_t k = 0; k < m; ++k)
+    if (is_integer[r.free[k]]) integer_columns.push_back(k);
+  rep.free_integer_variables = integer_columns.size();
+
+  // Fixed columns become identity rows; the pattern stays, so it is analysed once.
+  std::vector<char> fixed(m, 0);
+  Eigen::VectorXd value = Eigen::VectorXd::Zero(Eigen::Index(m)), y;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  ldlt.analyzePattern(r.Hr);
+  Eigen::SparseMatrix<double> K = r.Hr;
+  std::size_t left = integer_columns.size();
+  for (;;) {
+    Eigen::VectorXd rhs = r.br;
+    for (int k = 0; k < K.outerSize(); ++k) {
+      Eigen::SparseMatrix<double>::InnerIterator orig(r.Hr, k);
+      for (Eigen::SparseMatrix<double>::InnerIterator it(K, k); it; ++it, ++orig) {
+        const auto row = std::size_t(it.row());
+        if (fixed[std::size_t(k)] && !fixed[row]) rhs[it.row()] -= orig.value() * value[k];
+        it.valueRef() = (fixed[row] || fixed[std::size_t(k)]) ? (it.row() == k ? 1.0 : 0.0) : orig.value();
+      }
+    }
+    for (std::size_t k = 0; k < m; ++k)
+      if (fixed[k]) rhs[Eigen::Index(k)] = value[Eigen::Index(k)];
+    ldlt.factorize(K);
+    if (ldlt.info() != Eigen::Success)
+      throw std::runtime_error("solve_mixed_integer_quadratic: the reduced system is not positive definite");
+    y = ldlt.solve(rhs);
+    ++rep.solves;
+    for (std::size_t k = 0; k < m; ++k)
+      if (fixed[k]) y[Eigen::Index(k)] = value[Eigen::Index(k)];
+    if (rep.solves == 1) rep.objective_relaxed = objective(pb, r.E * y + r.c);
+    if (!options.round || left == 0) break;
+
+    // The free integer columns by distance to their nearest integer.
+    std::vector<std::pair<double, std::size_t>> order;
+    for (std::size_t k : integer_columns)
+      if (!fixed[k]) order.push_back({std::abs(y[Eigen::Index(k)] - std::round(y[Eigen::Index(k)])), k});
+    std::sort(order.begin(), order.end());
+    const std::size_t cap = std::max<std::size_t>(1, std::size_t(options.rounding_batch_share * double(left)));
+    std::size_t take = 0;
+    while (take < order.size() && take < cap && order[take].first < options.rounding_threshold) ++take;
+    take = std::max<std::size_t>(take, 1);
+    for (std::size_t a = 0; a < take; ++a) {
+      const std::size_t k = order[a].second;
+      fixed[k] = 1;
+      value[Eigen::Index(k)] = std::round(y[Eigen::Index(k)]);
+    }
+    left -= take;
+  }
+  out.x = r.E * y + r.c;
+  for (std::size_t i = 0; i < n; ++i)
+    if (is_integer[i] && options.round) {
+      if (elim.non_unit(i) && !is_integral(out.x[Eigen::Index(i)])) ++rep.non_integral_eliminated;
+      else if (elim.eliminated(i)) out.x[Eigen::Index(i)] = std::round(out.x[Eigen::Index(i)]);
+    }
+  rep.objective_rounded = objective(pb, out.x);
+  return out;
+}
+
+} // namespace CGAL_ext
