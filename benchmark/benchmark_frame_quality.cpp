@@ -18,7 +18,11 @@
 // with feature detection off (feature_angle_deg = 180, the boundary rule
 // before features, no repair: "no features").
 //
-//   benchmark_frame_quality [size_fraction=F] [hex_fraction=H] [hex_sizes=N] [diffusion_steps=N] [INPUT ...]
+//   benchmark_frame_quality [size_fraction=F] [hex_fraction=H] [hex_sizes=N] [diffusion_steps=N]
+//                           [variants=generate] [INPUT ...]
+//
+// variants=generate: only generate's output ("straightened"), not the
+// three other variants.
 //
 // Hex columns: when the environment gives CubeCover's integer-grid tool and
 // HexEx's command-line tool, CGAL_EXT_INTEGERGRID=/path/to/integergrid and
@@ -297,7 +301,7 @@ std::pair<Hex_run, Hex_run> hex_pipeline(const Hex_tools& tools, const CGAL_ext:
   const CGAL_ext::Integer_grid_map_input in = CGAL_ext::make_integer_grid_map_input(ff, matchings, points, h);
   const CGAL_ext::Integer_grid_map map = CGAL_ext::compute_integer_grid_map(in);
   ours.map_seconds = since(t);
-  CGAL_ext::IO::write_hexex((dir / "ours.hexex").string(), {in.positions, in.tets, map.parameters});
+  CGAL_ext::IO::write_hexex((dir / "ours.hexex").string(), {map.positions, map.tets, map.parameters});
   extract_and_measure(tools, dir, "ours.hexex", h, ours);
 
   if (q.error.empty() && ours.error.empty()) fs::remove_all(dir);
@@ -460,7 +464,7 @@ void print_row(const std::string& name, const char* variant, const Quality& q, d
 
 // The four variants of one model: no repair, repaired, straightened (generate's output), no features.
 void benchmark_model(const std::string& input, const std::string& name, double size_fraction, const Hex_tools& tools,
-                     int diffusion_steps) {
+                     int diffusion_steps, bool all_variants) {
   const auto t = std::chrono::steady_clock::now();
   const CGAL_ext::IO::Medit_mesh mesh = mesh_of(input, size_fraction);
   Tr tr;
@@ -478,12 +482,13 @@ void benchmark_model(const std::string& input, const std::string& name, double s
   Frames ff(field);
   ff.compute(defaults);
   const double seconds_compute = since(t_field);
-  print_row(name, "no repair", measure(tr, field, ff, seconds_compute, tools, mesh, h), seconds_mesh);
+  if (all_variants) print_row(name, "no repair", measure(tr, field, ff, seconds_compute, tools, mesh, h), seconds_mesh);
   t_field = std::chrono::steady_clock::now();
   CGAL_ext::repair_singularities(ff);
   const double seconds_repaired = seconds_compute + since(t_field);
-  print_row(name, "repaired", measure(tr, field, ff, seconds_repaired, tools, mesh, h), seconds_mesh);
+  if (all_variants) print_row(name, "repaired", measure(tr, field, ff, seconds_repaired, tools, mesh, h), seconds_mesh);
   print_row(name, "straightened", measure(tr, field, ff, seconds_repaired, tools, mesh, h, true), seconds_mesh);
+  if (!all_variants) return;
   t_field = std::chrono::steady_clock::now();
   Frames plain(field);
   CGAL_ext::Frame_field_options options = defaults;
@@ -497,6 +502,7 @@ void benchmark_model(const std::string& input, const std::string& name, double s
 int main(int argc, char** argv) {
   double size_fraction = 0;
   int diffusion_steps = CGAL_ext::Frame_field_options().diffusion_steps;
+  bool all_variants = true;
   Hex_tools tools;
   if (const char* p = std::getenv("CGAL_EXT_INTEGERGRID")) tools.integergrid = p;
   if (const char* p = std::getenv("CGAL_EXT_HEXEX")) tools.hexex = p;
@@ -527,8 +533,11 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "diffusion_steps must be in [0, 1000], got '%s'\n", arg.c_str() + 16);
         return 2;
       }
+    } else if (arg == "variants=generate") {
+      all_variants = false;
     } else if (arg == "-h" || arg == "--help") {
-      std::printf("usage: benchmark_frame_quality [size_fraction=F] [hex_fraction=H] [hex_sizes=N] [diffusion_steps=N] [INPUT ...]\n"
+      std::printf("usage: benchmark_frame_quality [size_fraction=F] [hex_fraction=H] [hex_sizes=N] [diffusion_steps=N]\n"
+                  "                               [variants=generate] [INPUT ...]\n"
                   "hex columns: set CGAL_EXT_INTEGERGRID and CGAL_EXT_HEXEX to the tools' paths\n"
                   "INPUT: builtin:NAME, a closed surface (.off .obj .stl .ply), or a tet mesh (.mesh)\n");
       return 0;
@@ -575,7 +584,7 @@ int main(int argc, char** argv) {
     const std::string name = input.rfind("builtin:", 0) == 0 ? input : std::filesystem::path(input).filename().string();
     try {
       benchmark_model(input, name, size_fraction > 0 ? size_fraction : tools.fraction < 1.0 / 20 ? tools.fraction : 0,
-                      tools, diffusion_steps);
+                      tools, diffusion_steps, all_variants);
     } catch (const std::exception& e) {
       std::printf("%-22s error: %s\n", name.c_str(), e.what());
       ++failures;

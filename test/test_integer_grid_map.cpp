@@ -12,6 +12,7 @@
 #include <CGAL_ext/make_kuhn_grid.h>
 #include <CGAL_ext/tet_face_neighbors.h>
 
+#include "integer_grid_map_checks.h"
 #include "test_support.h"
 
 #include <catch2/catch.hpp>
@@ -73,12 +74,16 @@ V3 extent(const Integer_grid_map& map) {
   return hi - lo;
 }
 
-// The map is u = S (p - p0) for one diagonal S and one p0, in every corner.
+// The map is u = S (p - p0) for one diagonal S and one p0, in every corner
+// of the map's tetrahedra (split edges included) and of the input's.
 void require_affine(const Integer_grid_map_input& in, const Integer_grid_map& map, const V3& scale) {
-  const V3 p0 = in.positions[in.tets[0][0]] - map.parameters[0][0].cwiseQuotient(scale);
+  const V3 p0 = map.positions[map.tets[0][0]] - map.parameters[0][0].cwiseQuotient(scale);
+  for (std::size_t t = 0; t < map.tets.size(); ++t)
+    for (std::size_t c = 0; c < 4; ++c)
+      REQUIRE((map.parameters[t][c] - scale.cwiseProduct(map.positions[map.tets[t][c]] - p0)).norm() < 1e-8);
   for (std::size_t t = 0; t < in.tets.size(); ++t)
     for (std::size_t c = 0; c < 4; ++c)
-      REQUIRE((map.parameters[t][c] - scale.cwiseProduct(in.positions[in.tets[t][c]] - p0)).norm() < 1e-8);
+      REQUIRE((map.input_parameters[t][c] - scale.cwiseProduct(in.positions[in.tets[t][c]] - p0)).norm() < 1e-8);
 }
 
 } // namespace
@@ -87,6 +92,8 @@ TEST_CASE("integer-grid map: a constant metric on a box whose size is a multiple
           "[integer_grid_map]") {
   const auto in = grid_input({4, 3, 2}, 0.5, {0.25, -1, 3}, identity_frame, M3::Identity(), 0.5);
   const Integer_grid_map map = compute_integer_grid_map(in);
+  testing::require_refinement(in, map);
+  CHECK(testing::require_seamless(in, map) == 0);
   const auto& rep = map.report;
   CHECK(rep.cut_faces_tree > 0);
   CHECK(rep.cut_faces == 0); // a ball without singularity: every cut face is glued back
@@ -98,7 +105,7 @@ TEST_CASE("integer-grid map: a constant metric on a box whose size is a multiple
   CHECK(rep.parameter_volume == Approx(4 * 3 * 2));
   CHECK(rep.due_volume == Approx(4 * 3 * 2));
   require_affine(in, map, V3::Constant(2));
-  for (const auto& tet : map.parameters)
+  for (const auto& tet : map.input_parameters) // the grid's vertices; split edges' midpoints are half-integers
     for (const V3& u : tet)
       for (int k = 0; k < 3; ++k) REQUIRE(integral(u[k]));
 }
@@ -108,6 +115,7 @@ TEST_CASE("integer-grid map: a box of 3.75 hex edges gets 4, its boundary on int
   // 5 cubes of 0.3 per side: 1.5 long, h = 0.4.
   const auto in = grid_input({5, 5, 5}, 0.3, {0, 0, 0}, identity_frame, M3::Identity(), 0.4);
   const Integer_grid_map map = compute_integer_grid_map(in);
+  testing::require_seamless(in, map);
   CHECK(map.report.inverted_tets == 0);
   CHECK(map.report.flat_tets == 0);
   CHECK(map.report.fit_error_relaxed < 1e-12); // from the objective: rounding errors of 1e-16
@@ -143,6 +151,7 @@ TEST_CASE("integer-grid map: frames relabelled at random per tetrahedron give th
     for (int m : g) charts.insert(m);
   REQUIRE(charts.size() > 10); // the matchings are not the identity
   const Integer_grid_map map = compute_integer_grid_map(in);
+  testing::require_seamless(in, map);
   CHECK(map.report.cut_faces == 0);
   CHECK(map.report.singular_edges == 0);
   CHECK(map.report.inverted_tets == 0);
@@ -151,7 +160,7 @@ TEST_CASE("integer-grid map: frames relabelled at random per tetrahedron give th
   // map to unit steps along the axes, and every corner to integers.
   for (std::size_t t = 0; t < in.tets.size(); ++t)
     for (std::size_t c = 0; c < 4; ++c)
-      for (int k = 0; k < 3; ++k) REQUIRE(integral(map.parameters[t][c][k]));
+      for (int k = 0; k < 3; ++k) REQUIRE(integral(map.input_parameters[t][c][k]));
   CHECK(map.report.parameter_volume == Approx(27));
 }
 
@@ -167,6 +176,8 @@ TEST_CASE("integer-grid map: valence-3 and valence-5 singular curves lie on grid
       in.free_boundary.assign(in.tets.size(), true); // the sides are not aligned with such frames
       const Integer_grid_map map = compute_integer_grid_map(in);
       const auto& rep = map.report;
+      testing::require_refinement(in, map);
+      CHECK(testing::require_seamless(in, map) > 0); // the cut ending on the curve
       CHECK(rep.singular_edges == 2);
       CHECK(rep.singular_edges_on_grid_lines == 2);
       CHECK(rep.cut_faces > 0);
@@ -174,9 +185,9 @@ TEST_CASE("integer-grid map: valence-3 and valence-5 singular curves lie on grid
       CHECK(rep.flat_tets == 0);
       // The axis's vertices: x = y = 0; their coordinates across the curve's axis are integers.
       std::size_t seen = 0;
-      for (std::size_t t = 0; t < in.tets.size(); ++t)
+      for (std::size_t t = 0; t < map.tets.size(); ++t)
         for (std::size_t c = 0; c < 4; ++c) {
-          const V3& p = in.positions[in.tets[t][c]];
+          const V3& p = map.positions[map.tets[t][c]];
           if (std::abs(p.x()) > 1e-12 || std::abs(p.y()) > 1e-12) continue;
           ++seen;
           REQUIRE(integral(map.parameters[t][c].x()));
@@ -185,6 +196,35 @@ TEST_CASE("integer-grid map: valence-3 and valence-5 singular curves lie on grid
       CHECK(seen > 0);
     }
   }
+}
+
+TEST_CASE("integer-grid map: tetrahedra the rounding inverts are untangled, the seams and integers held",
+          "[integer_grid_map]") {
+  // A valence-5 curve on the z axis of [-1, 1]^2 x [0, 0.5], hexes of 0.6:
+  // the rounding puts the curve's grid line and the sides' planes 1 to 2
+  // steps apart, and inverts tetrahedra between them.
+  auto frame = [](const V3& c) { return M3(Eigen::AngleAxisd(-0.25 * std::atan2(c.y(), c.x()), V3::UnitZ())); };
+  const auto in = grid_input({8, 8, 2}, 0.25, {-1, -1, 0}, frame, M3::Identity(), 0.6);
+  Integer_grid_map_options no_untangling;
+  no_untangling.untangle = false;
+  const Integer_grid_map rounded = compute_integer_grid_map(in, no_untangling);
+  REQUIRE(rounded.report.inverted_tets > 0);
+  CHECK(!rounded.report.untangled);
+  const Integer_grid_map map = compute_integer_grid_map(in);
+  const auto& rep = map.report;
+  CHECK(rep.inverted_tets_rounded == rounded.report.inverted_tets);
+  CHECK(rep.untangled);
+  CHECK(rep.inverted_tets == 0);
+  CHECK(rep.flat_tets == 0);
+  CHECK(rep.min_relative_det_rounded < 0);
+  CHECK(rep.min_relative_det > 0);
+  testing::require_refinement(in, map);
+  testing::require_seamless(in, map);
+  // The boundary still on integer planes: the vertices at x = +-1 have an integer coordinate there.
+  for (std::size_t t = 0; t < map.tets.size(); ++t)
+    for (std::size_t c = 0; c < 4; ++c)
+      if (std::abs(std::abs(map.positions[map.tets[t][c]].z() - 0.25) - 0.25) < 1e-12)
+        REQUIRE(integral(map.parameters[t][c].z()));
 }
 
 TEST_CASE("integer-grid map: inputs that do not agree are refused", "[integer_grid_map]") {

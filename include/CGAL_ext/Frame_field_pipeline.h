@@ -330,8 +330,10 @@ void check_pipeline_output_directory(const std::string& directory, const std::ve
 /// Writes `frames.fra`, `frames.perm`, `mesh.mesh`, `frames.vtu` and
 /// `singularities.vtu` into `directory` (created if missing), each file
 /// atomically (see `output_files.md`); with a map, also `map.hexex`
-/// (`IO::write_hexex()`, the tetrahedra as in `mesh.mesh`) and the cell
-/// array `parameters` of `frames.vtu`.
+/// (`IO::write_hexex()`: the map's mesh, `mesh.mesh`'s with the split
+/// edges' midpoints, and its parameters) and the cell array `parameters` of
+/// `frames.vtu` (the map at each tetrahedron's corners,
+/// `Integer_grid_map::input_parameters`).
 /// \param directory the output directory
 /// \param mesh the tet mesh
 /// \param frames the frame field and its singularities

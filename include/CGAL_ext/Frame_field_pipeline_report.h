@@ -137,7 +137,10 @@ inline nlohmann::ordered_json pipeline_thickness_json(const std::optional<Pipeli
 
 // The "integer_grid_map" object.
 inline nlohmann::ordered_json pipeline_integer_grid_map_json(const Integer_grid_map_report& m) {
-  return {{"cut_faces_tree", m.cut_faces_tree},
+  return {{"split_edges", m.split_edges},
+          {"split_edges_rejected", m.split_edges_rejected},
+          {"map_tets", m.map_tets},
+          {"cut_faces_tree", m.cut_faces_tree},
           {"cut_faces", m.cut_faces},
           {"cut_vertices", m.cut_vertices},
           {"singular_edges", m.singular_edges},
@@ -157,10 +160,18 @@ inline nlohmann::ordered_json pipeline_integer_grid_map_json(const Integer_grid_
           {"fit_error", m.fit_error},
           {"parameter_volume", m.parameter_volume},
           {"due_volume", m.due_volume},
+          {"inverted_tets_rounded", m.inverted_tets_rounded},
+          {"flat_tets_rounded", m.flat_tets_rounded},
+          {"untangled", m.untangled},
+          {"untangle_rounds", m.untangle_rounds},
+          {"untangle_iterations", m.untangle_iterations},
+          {"min_relative_det_rounded", m.min_relative_det_rounded},
+          {"min_relative_det", m.min_relative_det},
           {"inverted_tets", m.inverted_tets},
           {"flat_tets", m.flat_tets},
           {"seconds_setup", m.seconds_setup},
-          {"seconds_solve", m.seconds_solve}};
+          {"seconds_solve", m.seconds_solve},
+          {"seconds_untangle", m.seconds_untangle}};
 }
 
 // The "hex_coverage_ceiling" object: numbers, null where not finite; the

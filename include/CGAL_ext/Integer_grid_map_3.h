@@ -55,15 +55,27 @@ struct Integer_grid_map_options {
   /// Whether to quantize: `false` gives the seamless map before rounding
   /// (translations and constrained coordinates real), for inspection.
   bool quantize = true;
+  /// Whether the untangling may split edges of the tetrahedra that the
+  /// rounded map makes flat (see `compute_integer_grid_map()`).
+  bool split_edges = true;
   /// The rounding of the integer variables.
   Mixed_integer_quadratic_options rounding;
+  /// Whether to untangle a map with inverted or flat tetrahedra after the
+  /// rounding (the integers and the seams held).
+  bool untangle = true;
+  /// The untangling's rounds of its barrier (each lowers its
+  /// regularisation), and L-BFGS iterations per round.
+  int untangle_rounds = 40, untangle_iterations = 300;
 };
 
 /// \ingroup PkgCGALExtHex
 /// What the map found and how good it is.
 struct Integer_grid_map_report {
-  /// The tetrahedra.
-  std::size_t tets = 0;
+  /// The tetrahedra of the input, the edges split, and the tetrahedra of
+  /// the map (each split edge splits the tetrahedra around it in two).
+  std::size_t tets = 0, split_edges = 0, map_tets = 0;
+  /// The edges split for an untangling that was not kept.
+  std::size_t split_edges_rejected = 0;
   /// The interior faces cut by the dual spanning tree, and those still cut
   /// after gluing back every face a regular interior edge determines: the
   /// faces that carry transition functions.
@@ -94,20 +106,49 @@ struct Integer_grid_map_report {
   /// The tetrahedra with a parameter volume in `[0, 1e-3]` times its due
   /// (`vol_t det(G_t)`): flat in parameter space.
   std::size_t flat_tets = 0;
-  /// Seconds: the cut and the constraints, the solve and the rounding.
-  double seconds_setup = 0, seconds_solve = 0;
+  /** @{ */
+  /// The same counts after the rounding, before the untangling.
+  std::size_t inverted_tets_rounded = 0, flat_tets_rounded = 0;
+  /** @} */
+  /// Whether the untangled map was kept: the untangling runs when the
+  /// rounded map has inverted or flat tetrahedra, and its result is kept
+  /// only if it has fewer of them.
+  bool untangled = false;
+  /** @{ */
+  /// The untangling's rounds and L-BFGS iterations.
+  int untangle_rounds = 0, untangle_iterations = 0;
+  /** @} */
+  /// The least `det(J G^-T)` (the parameter Jacobian against the target's)
+  /// over the tetrahedra, before and after the untangling: positive when
+  /// every tetrahedron is.
+  double min_relative_det_rounded = 0, min_relative_det = 0;
+  /// Seconds: the cut and the constraints, the solve and the rounding, the untangling.
+  double seconds_setup = 0, seconds_solve = 0, seconds_untangle = 0;
 };
 
 /// \ingroup PkgCGALExtHex
-/// An integer-grid map.
+/// An integer-grid map, on the input's mesh with some edges split.
 struct Integer_grid_map {
+  /// The vertices of the map's mesh: the input's, then the midpoints of the
+  /// split edges.
+  std::vector<Eigen::Vector3d> positions;
+  /// The map's tetrahedra (positively oriented): the input's, those around
+  /// a split edge halved (the half at the edge's first vertex keeps the
+  /// input's index, the other is appended).
+  std::vector<std::array<std::size_t, 4>> tets;
+  /// `parent[t]`: the input tetrahedron that map tetrahedron `t` is part of.
+  std::vector<std::size_t> parent;
   /// `parameters[t][c]`: the parameters of corner `c` (vertex `tets[t][c]`)
-  /// of tetrahedron `t`, in that tetrahedron's chart (its frame vectors'
+  /// of map tetrahedron `t`, in its chart (its parent's frame vectors'
   /// order and signs after the combing along the spanning tree).
   std::vector<std::array<Eigen::Vector3d, 4>> parameters;
+  /// `input_parameters[t][c]`: the parameters of corner `c` of input
+  /// tetrahedron `t` (vertex `input.tets[t][c]`), in its chart: the map at
+  /// the input's vertices, e.g. to show it on the input mesh.
+  std::vector<std::array<Eigen::Vector3d, 4>> input_parameters;
   /// `chart[t]`: the index in `octahedral_group()` of the rotation `C` from
-  /// the field's chart of `t` to the map's: the gradients the map fits are
-  /// the rows of `C G_t^T`.
+  /// the field's chart of map tetrahedron `t` (its parent's) to the map's:
+  /// the gradients the map fits are the rows of `C G_t^T`.
   std::vector<int> chart;
   /// The report.
   Integer_grid_map_report report;
@@ -140,10 +181,25 @@ struct Integer_grid_map {
 ///    `sum_t vol_t |grad u - G_t|^2` under the equalities, the integer
 ///    variables rounded greedily with re-solves
 ///    (`solve_mixed_integer_quadratic()`).
+/// 5. **Untangling.** If tetrahedra are inverted or flat, the real unknowns
+///    (the equalities and the rounded integers held) minimise the
+///    foldover-free energy of Garanzha et al. 2021 on `K = J G^-T` (the
+///    map's Jacobian against the target's), shape `tr(K^T K) / chi^(2/3)`
+///    and volume `(det^2 + 1) / chi` in equal parts, `chi` the regularised
+///    determinant whose regularisation goes to 0 over the rounds.
+///    Where the integers hold all four vertices of a tetrahedron on one
+///    integer plane (its vertices all on one boundary sheet) or three on one
+///    grid line (three vertices of a singular curve, or of a crease), no
+///    unknown of the map can lift it. So before the untangling, each such
+///    flat tetrahedron has an interior edge split that is not singular, has
+///    no cut face around it, and whose midpoint, moved off that plane or
+///    line, can leave both halves positive: the tetrahedra around it are
+///    halved (keeping their parent's gradients and chart), and the midpoint
+///    is a new free point, started at the middle of the edge's parameters.
+///    The untangled map, on that mesh, is kept if it has fewer inverted
+///    tetrahedra, or as many and fewer flat ones; the rounded map otherwise.
 ///
 /// The result is a map HexEx and `metric-frames` read (`IO::write_hexex()`).
-/// It is not made injective here: `report.inverted_tets` and
-/// `report.flat_tets` say how far it is from it.
 ///
 /// \param input the mesh and the field
 /// \param options whether to quantize, and how

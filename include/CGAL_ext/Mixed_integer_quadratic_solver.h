@@ -91,6 +91,15 @@ struct Mixed_integer_quadratic_solution {
   Eigen::VectorXd x;
   /// What the solver did.
   Mixed_integer_quadratic_report report;
+  /** @{ */
+  /// The reduced space: every `x = E y + c` meets the equalities; `y` is
+  /// the solution's, one entry per free variable.
+  Eigen::SparseMatrix<double> E;
+  Eigen::VectorXd c, y;
+  /** @} */
+  /// Per entry of `y`: whether it is an integer variable (then an integer,
+  /// when rounded), so that a later step can move the others only.
+  std::vector<char> integer_column;
 };
 
 /// \ingroup PkgCGALExtHex

@@ -2,6 +2,9 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #include <CGAL_ext/Integer_grid_map_3.h>
 #include <CGAL_ext/Octahedral_frame.h>
+#include <CGAL_ext/tet_face_neighbors.h>
+
+#include "foldover_free_map.h"
 
 #include <Eigen/LU>
 #include <Eigen/SparseCore>
@@ -11,6 +14,7 @@
 #include <cmath>
 #include <deque>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -247,6 +251,63 @@ void glue(Topology& top, const std::vector<Edge_loop>& loops) {
   }
 }
 
+// Splits the given edges (vertex pairs of the input) at their midpoints:
+// each tetrahedron around one becomes two with the same orientation, the
+// half at the edge's first vertex keeping its index. The halves keep their
+// parent's gradients and free-boundary flag; faces inside a parent match by
+// the identity, the others as the parents' faces.
+Integer_grid_map_input split_edges(const Integer_grid_map_input& in, const std::vector<std::array<std::size_t, 2>>& edges,
+                                   std::vector<std::size_t>& parent) {
+  Integer_grid_map_input out = in;
+  parent.resize(in.tets.size());
+  std::iota(parent.begin(), parent.end(), std::size_t(0));
+  std::vector<std::vector<std::size_t>> at(in.positions.size()); // the tetrahedra at each vertex
+  for (std::size_t t = 0; t < in.tets.size(); ++t)
+    for (std::size_t v : in.tets[t]) at[v].push_back(t);
+  for (const auto& [a, b] : edges) {
+    const std::size_t m = out.positions.size();
+    out.positions.push_back((in.positions[a] + in.positions[b]) / 2);
+    at.emplace_back();
+    std::vector<std::size_t> around;
+    for (std::size_t t : at[a])
+      if (local_index(out.tets[t], b) >= 0) around.push_back(t);
+    for (std::size_t t : around) {
+      const std::size_t t2 = out.tets.size();
+      std::array<std::size_t, 4> q2 = out.tets[t];
+      q2[std::size_t(local_index(q2, a))] = m; // the half at b
+      out.tets[t][std::size_t(local_index(out.tets[t], b))] = m; // the half at a keeps slot t
+      out.tets.push_back(q2);
+      parent.push_back(parent[t]);
+      at[b].erase(std::find(at[b].begin(), at[b].end(), t));
+      for (std::size_t v : q2) at[v].push_back(t2);
+      at[m].push_back(t);
+    }
+  }
+  const std::size_t n = out.tets.size();
+  out.neighbors = tet_face_neighbors(out.tets);
+  out.matchings.assign(n, {-1, -1, -1, -1});
+  out.gradients.resize(n);
+  if (!in.free_boundary.empty()) out.free_boundary.resize(n);
+  for (std::size_t t = 0; t < n; ++t) {
+    const std::size_t p = parent[t];
+    out.gradients[t] = in.gradients[p];
+    if (!in.free_boundary.empty()) out.free_boundary[t] = in.free_boundary[p];
+    for (std::size_t f = 0; f < 4; ++f) {
+      const std::int64_t u = out.neighbors[t][f];
+      if (u < 0) continue;
+      const std::size_t q = parent[std::size_t(u)];
+      if (q == p) {
+        out.matchings[t][f] = 0;
+        continue;
+      }
+      for (std::size_t g = 0; g < 4; ++g)
+        if (in.neighbors[p][g] == std::int64_t(q)) out.matchings[t][f] = in.matchings[p][g];
+      if (out.matchings[t][f] < 0) throw std::logic_error("compute_integer_grid_map: a split face has no parent face");
+    }
+  }
+  return out;
+}
+
 // Union-find of the corners (4 t + c) across the uncut faces: the vertices of
 // the cut mesh, numbered by their lowest corner.
 std::vector<std::size_t> cut_mesh_vertices(const Integer_grid_map_input& in, const Topology& top, std::size_t& count) {
@@ -436,27 +497,242 @@ void add_objective(const Integer_grid_map_input& in, const Topology& top, const 
   as.problem.b = std::move(b);
 }
 
-void measure(const Integer_grid_map_input& in, const Topology& top, Integer_grid_map& map) {
-  auto& rep = map.report;
-  double fit = 0;
-  for (std::size_t t = 0; t < in.tets.size(); ++t) {
-    double vol = 0;
-    const Eigen::Matrix<double, 3, 4> B = gradient_operator(in, t, vol);
-    Eigen::Matrix<double, 3, 4> U;
-    for (int c = 0; c < 4; ++c) U.col(c) = map.parameters[t][std::size_t(c)];
-    const Eigen::Matrix3d grad = U * B.transpose(); // rows: grad u_k
-    fit += vol * (grad - combed_jacobian(in, top, t)).squaredNorm();
-    Eigen::Matrix3d P;
-    P << U.col(1) - U.col(0), U.col(2) - U.col(0), U.col(3) - U.col(0);
-    const double pv = P.determinant() / 6, due = vol * in.gradients[t].determinant();
-    rep.parameter_volume += pv;
-    rep.due_volume += due;
-    if (pv < 0)
-      ++rep.inverted_tets;
-    else if (pv <= 1e-3 * due)
-      ++rep.flat_tets;
+// The mesh the parameters live on: the input's or a refinement of it, each
+// tetrahedron with its chart (its parent's) and the unknown point (the
+// cut-mesh vertex, 3 entries of x from 3 node) of each corner.
+struct Map_mesh {
+  std::vector<Eigen::Vector3d> positions;
+  std::vector<std::array<std::size_t, 4>> tets;
+  std::vector<std::size_t> parent, node; // per tetrahedron; per corner 4 t + c
+  std::vector<Eigen::Matrix3d> target;   // per tetrahedron: C G^T, the rows the gradients fit
+  Integer_grid_map_input as_input() const {
+    Integer_grid_map_input m;
+    m.positions = positions;
+    m.tets = tets;
+    return m;
   }
-  rep.fit_error = fit;
+};
+
+Map_mesh unrefined(const Integer_grid_map_input& in, const Topology& top, const std::vector<std::size_t>& node) {
+  Map_mesh m{in.positions, in.tets, {}, node, {}};
+  m.parent.resize(in.tets.size());
+  std::iota(m.parent.begin(), m.parent.end(), std::size_t(0));
+  for (std::size_t t = 0; t < in.tets.size(); ++t) m.target.push_back(combed_jacobian(in, top, t));
+  return m;
+}
+
+// The parameters of corner c of tetrahedron t.
+Eigen::Vector3d corner(const Map_mesh& m, const Eigen::VectorXd& x, std::size_t t, std::size_t c) {
+  return x.segment<3>(Eigen::Index(3 * m.node[4 * t + c]));
+}
+
+// Of tetrahedron t: its parameter volume, the volume due (its volume times
+// det of its target), and the fitting error vol |grad u - target|^2.
+struct Tet_measure {
+  double parameter_volume = 0, due = 0, fit = 0;
+  bool inverted() const { return parameter_volume < 0; }
+  bool flat() const { return parameter_volume >= 0 && parameter_volume <= 1e-3 * due; }
+};
+
+Tet_measure measure_tet(const Map_mesh& m, const Eigen::VectorXd& x, std::size_t t) {
+  const auto& p = m.positions;
+  const auto& q = m.tets[t];
+  Eigen::Matrix3d D, P;
+  D << p[q[1]] - p[q[0]], p[q[2]] - p[q[0]], p[q[3]] - p[q[0]];
+  Eigen::Matrix<double, 3, 4> U;
+  for (std::size_t c = 0; c < 4; ++c) U.col(Eigen::Index(c)) = corner(m, x, t, c);
+  P << U.col(1) - U.col(0), U.col(2) - U.col(0), U.col(3) - U.col(0);
+  Eigen::Matrix<double, 3, 4> S;
+  S << -1, 1, 0, 0, -1, 0, 1, 0, -1, 0, 0, 1;
+  const Eigen::Matrix3d grad = U * (D.transpose().inverse() * S).transpose(); // rows: grad u_k
+  Tet_measure r;
+  const double vol = D.determinant() / 6;
+  r.parameter_volume = P.determinant() / 6;
+  r.due = vol * m.target[t].determinant();
+  r.fit = vol * (grad - m.target[t]).squaredNorm();
+  return r;
+}
+
+// Fit error (not yet normalised), volumes, inverted and flat tetrahedra of x on m.
+void measure(const Map_mesh& m, const Eigen::VectorXd& x, Integer_grid_map_report& rep) {
+  rep.parameter_volume = rep.due_volume = rep.fit_error = 0;
+  rep.inverted_tets = rep.flat_tets = 0;
+  for (std::size_t t = 0; t < m.tets.size(); ++t) {
+    const Tet_measure r = measure_tet(m, x, t);
+    rep.parameter_volume += r.parameter_volume;
+    rep.due_volume += r.due;
+    rep.fit_error += r.fit;
+    rep.inverted_tets += r.inverted();
+    rep.flat_tets += r.flat();
+  }
+}
+
+// A point for the midpoint of edge (a, b) that leaves both halves of every
+// tetrahedron around it positive, if there is one that the relaxation
+// method (Agmon, Motzkin and Schoenberg) finds from the middle of the
+// edge's parameters: each half's determinant is affine in the point, so
+// the point is moved onto the most violated of these half-spaces, with a
+// margin, until none is.
+std::optional<Eigen::Vector3d> lifted_midpoint(const Map_mesh& m, const Eigen::VectorXd& x,
+                                               const std::vector<std::size_t>& around, std::size_t a, std::size_t b) {
+  struct Half_space { // n . p + d > 0
+    Eigen::Vector3d n;
+    double d;
+  };
+  std::vector<Half_space> halves;
+  double size = 0;
+  for (std::size_t t : around)
+    for (std::size_t replaced : {a, b}) {
+      auto det = [&](const Eigen::Vector3d& p) {
+        std::array<Eigen::Vector3d, 4> Q;
+        for (std::size_t c = 0; c < 4; ++c) Q[c] = m.tets[t][c] == replaced ? p : corner(m, x, t, c);
+        Eigen::Matrix3d D;
+        D << Q[1] - Q[0], Q[2] - Q[0], Q[3] - Q[0];
+        return D.determinant();
+      };
+      Half_space h{Eigen::Vector3d::Zero(), det(Eigen::Vector3d::Zero())};
+      for (int k = 0; k < 3; ++k) h.n[k] = det(Eigen::Vector3d::Unit(k)) - h.d;
+      size = std::max(size, h.n.norm());
+      halves.push_back(h);
+    }
+  const std::size_t t0 = around.front();
+  Eigen::Vector3d p = (corner(m, x, t0, std::size_t(local_index(m.tets[t0], a))) +
+                       corner(m, x, t0, std::size_t(local_index(m.tets[t0], b)))) / 2;
+  // A margin of 1e-3 of the largest gradient norm (a parameter length squared).
+  const double margin = 1e-3 * size * std::sqrt(size);
+  for (int it = 0; it < 200; ++it) {
+    const Half_space* worst = nullptr;
+    double lowest = margin;
+    for (const Half_space& h : halves)
+      if (h.n.dot(p) + h.d < lowest) lowest = h.n.dot(p) + h.d, worst = &h;
+    if (!worst) return p;
+    if (worst->n.squaredNorm() == 0) return std::nullopt; // a half that the point cannot lift
+    p += (2 * margin - lowest) / worst->n.squaredNorm() * worst->n;
+  }
+  return std::nullopt;
+}
+
+// The flat tetrahedra of x refined: for each, an interior edge, not
+// singular and with no cut face around it, is split at its midpoint if a
+// point for it leaves every half around the edge positive; the point is a
+// new unknown (appended to x: one point, since no cut face is around the
+// edge), started there. The integers hold a flat tetrahedron's vertices on
+// one plane or line; the midpoint is free to lift the halves off it.
+Map_mesh refine_flat(const Integer_grid_map_input& in, const Topology& top, const std::vector<Edge_loop>& loops,
+                     const Map_mesh& base, Eigen::VectorXd& x, std::size_t& split) {
+  std::vector<std::optional<Eigen::Vector3d>> chosen(top.edges.size());
+  std::vector<char> tried(top.edges.size(), 0);
+  for (std::size_t t = 0; t < base.tets.size(); ++t) {
+    if (!measure_tet(base, x, t).flat()) continue;
+    for (int e = 0; e < 6; ++e) {
+      const std::size_t id = top.tet_edges[t][std::size_t(e)];
+      const Edge_loop& loop = loops[id];
+      const bool cut = std::any_of(loop.faces.begin(), loop.faces.end(), [&](std::size_t f) { return top.cut[f] != 0; });
+      if (loop.faces.empty() || loop.holonomy != 0 || cut) continue; // on the boundary, singular, or on a seam
+      if (chosen[id]) break;
+      if (tried[id]) continue;
+      tried[id] = 1;
+      std::vector<std::size_t> around;
+      for (std::size_t f : loop.faces) around.push_back(top.faces[f].t), around.push_back(top.faces[f].u);
+      std::sort(around.begin(), around.end());
+      around.erase(std::unique(around.begin(), around.end()), around.end());
+      chosen[id] = lifted_midpoint(base, x, around, top.edges[id][0], top.edges[id][1]);
+      if (chosen[id]) break;
+    }
+  }
+  std::vector<std::array<std::size_t, 2>> edges;
+  std::vector<Eigen::Vector3d> start;
+  for (std::size_t e = 0; e < top.edges.size(); ++e)
+    if (chosen[e]) edges.push_back(top.edges[e]), start.push_back(*chosen[e]);
+  split = edges.size();
+  if (edges.empty()) return base;
+  std::vector<std::size_t> parent;
+  const Integer_grid_map_input fine = split_edges(in, edges, parent);
+  const std::size_t nv = in.positions.size(), first_new = std::size_t(x.size()) / 3;
+  Map_mesh m{fine.positions, fine.tets, parent, std::vector<std::size_t>(4 * fine.tets.size()), {}};
+  Eigen::VectorXd grown = Eigen::VectorXd::Zero(x.size() + Eigen::Index(3 * edges.size()));
+  grown.head(x.size()) = x;
+  for (std::size_t t = 0; t < fine.tets.size(); ++t) {
+    const std::size_t p = parent[t];
+    m.target.push_back(base.target[p]);
+    for (std::size_t c = 0; c < 4; ++c) {
+      const std::size_t v = fine.tets[t][c];
+      m.node[4 * t + c] = v < nv ? base.node[4 * p + std::size_t(local_index(in.tets[p], v))] : first_new + (v - nv);
+    }
+  }
+  for (std::size_t k = 0; k < edges.size(); ++k) grown.segment<3>(Eigen::Index(3 * (first_new + k))) = start[k];
+  x.swap(grown);
+  return m;
+}
+
+// Untangles x on m in the reduced space x = E y + c of the solver, grown by
+// the free points appended to x after `reduced_size` entries (the split
+// edges' midpoints); the integer columns are held. Returns the new x, its
+// integer variables snapped.
+Eigen::VectorXd untangle_map(const Map_mesh& m, const Eigen::VectorXd& x0, const Assembly& as,
+                             const Mixed_integer_quadratic_solution& sol, const Integer_grid_map_options& options,
+                             Integer_grid_map_report& rep) {
+  const Eigen::Index n = sol.E.rows(), k = sol.E.cols(), extra = x0.size() - n;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int j = 0; j < sol.E.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(sol.E, j); it; ++it) t.emplace_back(int(it.row()), j, it.value());
+  for (Eigen::Index i = 0; i < extra; ++i) t.emplace_back(int(n + i), int(k + i), 1.0);
+  Eigen::SparseMatrix<double> E(n + extra, k + extra);
+  E.setFromTriplets(t.begin(), t.end());
+  Eigen::VectorXd c = Eigen::VectorXd::Zero(n + extra), y(k + extra);
+  c.head(n) = sol.c;
+  y << sol.y, x0.tail(extra);
+  internal::Foldover_free_problem pb;
+  const Integer_grid_map_input geometry = m.as_input();
+  const std::size_t nt = m.tets.size();
+  pb.corner.resize(nt);
+  pb.B.resize(nt);
+  pb.M.resize(nt);
+  pb.volume.resize(nt);
+  for (std::size_t i = 0; i < nt; ++i) {
+    for (std::size_t j = 0; j < 4; ++j) pb.corner[i][j] = 3 * m.node[4 * i + j];
+    pb.B[i] = gradient_operator(geometry, i, pb.volume[i]);
+    pb.M[i] = m.target[i].inverse();
+  }
+  pb.E = &E;
+  pb.c = &c;
+  pb.fixed = sol.integer_column;
+  pb.fixed.resize(std::size_t(k + extra), 0);
+  internal::Foldover_free_settings settings;
+  settings.max_rounds = options.untangle_rounds;
+  settings.max_iterations = options.untangle_iterations;
+  const internal::Foldover_free_outcome out = internal::untangle(pb, y, settings);
+  rep.untangled = true;
+  rep.untangle_rounds = out.rounds;
+  rep.untangle_iterations = out.iterations;
+  rep.min_relative_det_rounded = out.min_det_before;
+  rep.min_relative_det = out.min_det_after;
+  Eigen::VectorXd x = E * y + c;
+  for (std::size_t v = 0; v < as.integer.size(); ++v) // exact again after E y
+    if (as.integer[v] && std::abs(x[Eigen::Index(v)] - std::round(x[Eigen::Index(v)])) < 1e-6)
+      x[Eigen::Index(v)] = std::round(x[Eigen::Index(v)]);
+  return x;
+}
+
+// Fewer inverted tetrahedra, then fewer flat ones: inverted ones break the
+// hexes, flat ones HexEx extracts.
+bool fewer_defects(const Integer_grid_map_report& a, const Integer_grid_map_report& b) {
+  return a.inverted_tets != b.inverted_tets ? a.inverted_tets < b.inverted_tets : a.flat_tets < b.flat_tets;
+}
+
+// Fills the map's mesh and parameters from x on m.
+void set_map(const Integer_grid_map_input& input, const Map_mesh& m, const Eigen::VectorXd& x, Integer_grid_map& map) {
+  map.positions = m.positions;
+  map.tets = m.tets;
+  map.parent = m.parent;
+  map.parameters.resize(m.tets.size());
+  map.input_parameters.resize(input.tets.size());
+  for (std::size_t t = 0; t < m.tets.size(); ++t)
+    for (std::size_t c = 0; c < 4; ++c) {
+      map.parameters[t][c] = corner(m, x, t, c);
+      const int l = local_index(input.tets[m.parent[t]], m.tets[t][c]); // each input corner from a child with it
+      if (l >= 0) map.input_parameters[m.parent[t]][std::size_t(l)] = map.parameters[t][c];
+    }
 }
 
 } // namespace
@@ -500,10 +776,38 @@ Integer_grid_map compute_integer_grid_map(const Integer_grid_map_input& in, cons
   rep.seconds_solve = std::chrono::duration<double>(Clock::now() - solve_start).count();
 
   map.chart = top.chart;
-  map.parameters.resize(in.tets.size());
-  for (std::size_t t = 0; t < in.tets.size(); ++t)
-    for (std::size_t c = 0; c < 4; ++c) map.parameters[t][c] = sol.x.segment<3>(Eigen::Index(3 * node[4 * t + c]));
-  measure(in, top, map);
+  Map_mesh mesh = unrefined(in, top, node);
+  Eigen::VectorXd x = sol.x;
+  measure(mesh, x, rep);
+  rep.inverted_tets_rounded = rep.inverted_tets;
+  rep.flat_tets_rounded = rep.flat_tets;
+  if (options.untangle && rep.inverted_tets + rep.flat_tets > 0) {
+    const auto untangle_start = Clock::now();
+    Integer_grid_map_report trial = rep;
+    Eigen::VectorXd x_fine = x;
+    const Map_mesh fine =
+        options.split_edges && rep.flat_tets > 0 ? refine_flat(in, top, loops, mesh, x_fine, trial.split_edges) : mesh;
+    x_fine = untangle_map(fine, x_fine, as, sol, options, trial);
+    measure(fine, x_fine, trial);
+    trial.seconds_untangle = std::chrono::duration<double>(Clock::now() - untangle_start).count();
+    // Kept only if better: where the integers admit no valid map, the
+    // barrier can end worse than it began.
+    if (fewer_defects(trial, rep)) {
+      rep = trial;
+      mesh = fine;
+      x.swap(x_fine);
+    } else {
+      rep.untangle_rounds = trial.untangle_rounds;
+      rep.untangle_iterations = trial.untangle_iterations;
+      rep.min_relative_det_rounded = rep.min_relative_det = trial.min_relative_det_rounded;
+      rep.seconds_untangle = trial.seconds_untangle;
+      rep.split_edges_rejected = trial.split_edges;
+    }
+  }
+  rep.map_tets = mesh.tets.size();
+  set_map(in, mesh, x, map);
+  map.chart.resize(mesh.tets.size());
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) map.chart[t] = top.chart[mesh.parent[t]];
   const double norm = as.target_norm > 0 ? as.target_norm : 1;
   rep.fit_error /= norm;
   rep.fit_error_relaxed = std::max(0.0, 1 + sol.report.objective_relaxed / norm);

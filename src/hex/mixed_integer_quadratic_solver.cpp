@@ -290,6 +290,11 @@ Mixed_integer_quadratic_solution solve_mixed_integer_quadratic(const Mixed_integ
       else if (elim.eliminated(i)) out.x[Eigen::Index(i)] = std::round(out.x[Eigen::Index(i)]);
     }
   rep.objective_rounded = objective(pb, out.x);
+  out.E = r.E;
+  out.c = r.c;
+  out.y = y;
+  out.integer_column.assign(m, 0);
+  for (std::size_t k : integer_columns) out.integer_column[k] = 1;
   return out;
 }
 

@@ -37,10 +37,11 @@ Pipeline_integer_grid_map compute_pipeline_integer_grid_map(const Pipeline_tet_m
     char buf[512];
     std::snprintf(buf, sizeof buf,
                   "%zu cut faces, %zu singular edges on grid lines (%zu not), %zu integer variables, %zu solves; "
-                  "%zu inverted and %zu flat tetrahedra; fit error %.3g (%.3g before rounding)",
+                  "inverted and flat tetrahedra %zu and %zu after rounding, %zu and %zu after untangling (%d "
+                  "iterations); fit error %.3g (%.3g before rounding)",
                   r.cut_faces, r.singular_edges_on_grid_lines, r.singular_edges_unconstrained,
-                  r.solver.free_integer_variables, r.solver.solves, r.inverted_tets, r.flat_tets, r.fit_error,
-                  r.fit_error_relaxed);
+                  r.solver.free_integer_variables, r.solver.solves, r.inverted_tets_rounded, r.flat_tets_rounded,
+                  r.inverted_tets, r.flat_tets, r.untangle_iterations, r.fit_error, r.fit_error_relaxed);
     stage("integer-grid map", timer.time(), buf);
   }
   return out;

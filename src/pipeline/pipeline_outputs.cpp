@@ -41,16 +41,16 @@ int type_code(Singularity_type t) {
   }
 }
 
-// The map's parameters with the corners in the order of `mesh`'s
-// tetrahedra (the map has the triangulation's order, an even permutation
-// of it: both are positively oriented).
+// The map at the corners of `mesh`'s tetrahedra, in their order (the map's
+// input has the triangulation's order, an even permutation of it: both are
+// positively oriented).
 std::vector<std::array<Eigen::Vector3d, 4>> parameters_in_mesh_order(const IO::Medit_mesh& mesh,
                                                                       const Pipeline_integer_grid_map& map) {
   std::vector<std::array<Eigen::Vector3d, 4>> out(mesh.tetrahedra.size());
   for (std::size_t t = 0; t < out.size(); ++t)
     for (std::size_t c = 0; c < 4; ++c)
       for (std::size_t l = 0; l < 4; ++l)
-        if (map.input.tets[t][l] == mesh.tetrahedra[t][c]) out[t][c] = map.map.parameters[t][l];
+        if (map.input.tets[t][l] == mesh.tetrahedra[t][c]) out[t][c] = map.map.input_parameters[t][l];
   return out;
 }
 
@@ -198,13 +198,7 @@ void write_pipeline_outputs(const std::string& directory, const Pipeline_tet_mes
   if (map) parameters = parameters_in_mesh_order(written, *map);
   write_frame_files(dir, written, *frames.frames, *frames.matchings, parameters ? &*parameters : nullptr);
   write_singularities_vtu((dir / "singularities.vtu").string(), written, frames.singular_edges, frames.graph);
-  if (map) {
-    IO::Hexex_file file;
-    for (const auto& v : written.vertices) file.positions.push_back({v[0], v[1], v[2]});
-    file.tets = written.tetrahedra;
-    file.parameters = std::move(*parameters);
-    IO::write_hexex((dir / "map.hexex").string(), file);
-  }
+  if (map) IO::write_hexex((dir / "map.hexex").string(), {map->map.positions, map->map.tets, map->map.parameters});
 }
 
 std::string write_pipeline_report(const std::string& directory, const std::string& json) {
