@@ -200,31 +200,44 @@ TEST_CASE("integer-grid map: valence-3 and valence-5 singular curves lie on grid
 
 TEST_CASE("integer-grid map: tetrahedra the rounding inverts are untangled, the seams and integers held",
           "[integer_grid_map]") {
-  // A valence-5 curve on the z axis of [-1, 1]^2 x [0, 0.5], hexes of 0.6:
-  // the rounding puts the curve's grid line and the sides' planes 1 to 2
-  // steps apart, and inverts tetrahedra between them.
-  auto frame = [](const V3& c) { return M3(Eigen::AngleAxisd(-0.25 * std::atan2(c.y(), c.x()), V3::UnitZ())); };
-  const auto in = grid_input({8, 8, 2}, 0.25, {-1, -1, 0}, frame, M3::Identity(), 0.6);
-  Integer_grid_map_options no_untangling;
-  no_untangling.untangle = false;
-  const Integer_grid_map rounded = compute_integer_grid_map(in, no_untangling);
-  REQUIRE(rounded.report.inverted_tets > 0);
-  CHECK(!rounded.report.untangled);
-  const Integer_grid_map map = compute_integer_grid_map(in);
-  const auto& rep = map.report;
-  CHECK(rep.inverted_tets_rounded == rounded.report.inverted_tets);
-  CHECK(rep.untangled);
-  CHECK(rep.inverted_tets == 0);
-  CHECK(rep.flat_tets == 0);
-  CHECK(rep.min_relative_det_rounded < 0);
-  CHECK(rep.min_relative_det > 0);
-  testing::require_refinement(in, map);
-  testing::require_seamless(in, map);
-  // The boundary still on integer planes: the vertices at x = +-1 have an integer coordinate there.
-  for (std::size_t t = 0; t < map.tets.size(); ++t)
-    for (std::size_t c = 0; c < 4; ++c)
-      if (std::abs(std::abs(map.positions[map.tets[t][c]].z() - 0.25) - 0.25) < 1e-12)
-        REQUIRE(integral(map.parameters[t][c].z()));
+  // A valence-5 and a valence-3 curve on the z axis of [-1, 1]^2 x [0, 2 s]
+  // (s the grid's spacing), hexes of about a quarter of the width: the
+  // rounding puts the curve's grid line and the sides' planes a few steps
+  // apart, and inverts tetrahedra between them.
+  struct Case {
+    double turn, spacing, h;
+    int cubes;
+  };
+  for (const Case k : {Case{-0.25, 0.25, 0.5, 8}, Case{0.25, 0.2, 0.4, 10}}) {
+    DYNAMIC_SECTION("frames turning by " << k.turn << " of the angle, hexes of " << k.h) {
+      auto frame = [&](const V3& c) { return M3(Eigen::AngleAxisd(k.turn * std::atan2(c.y(), c.x()), V3::UnitZ())); };
+      const auto in = grid_input({k.cubes, k.cubes, 2}, k.spacing, {-1, -1, 0}, frame, M3::Identity(), k.h);
+      Integer_grid_map_options no_untangling;
+      no_untangling.untangle = false;
+      const Integer_grid_map rounded = compute_integer_grid_map(in, no_untangling);
+      REQUIRE(rounded.report.inverted_tets > 0);
+      CHECK(!rounded.report.untangled);
+      const Integer_grid_map map = compute_integer_grid_map(in);
+      const auto& rep = map.report;
+      CHECK(rep.inverted_tets_rounded == rounded.report.inverted_tets);
+      CHECK(rep.untangled);
+      CHECK(rep.untangle_tets > 0);
+      CHECK(rep.untangle_tets < map.tets.size()); // only around the defects
+      CHECK(rep.inverted_tets == 0);
+      CHECK(rep.flat_tets == 0);
+      CHECK(rep.min_relative_det_rounded < 0);
+      CHECK(rep.min_relative_det > 0);
+      testing::require_refinement(in, map);
+      testing::require_seamless(in, map);
+      // The top and bottom still on integer planes.
+      const double top = 2 * k.spacing;
+      for (std::size_t t = 0; t < map.tets.size(); ++t)
+        for (std::size_t c = 0; c < 4; ++c) {
+          const double z = map.positions[map.tets[t][c]].z();
+          if (std::abs(z) < 1e-12 || std::abs(z - top) < 1e-12) REQUIRE(integral(map.parameters[t][c].z()));
+        }
+    }
+  }
 }
 
 TEST_CASE("integer-grid map: inputs that do not agree are refused", "[integer_grid_map]") {

@@ -165,6 +165,7 @@ inline nlohmann::ordered_json pipeline_integer_grid_map_json(const Integer_grid_
           {"untangled", m.untangled},
           {"untangle_rounds", m.untangle_rounds},
           {"untangle_iterations", m.untangle_iterations},
+          {"untangle_tets", m.untangle_tets},
           {"min_relative_det_rounded", m.min_relative_det_rounded},
           {"min_relative_det", m.min_relative_det},
           {"inverted_tets", m.inverted_tets},

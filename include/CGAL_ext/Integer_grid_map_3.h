@@ -63,44 +63,58 @@ struct Integer_grid_map_options {
   /// Whether to untangle a map with inverted or flat tetrahedra after the
   /// rounding (the integers and the seams held).
   bool untangle = true;
+  /** @{ */
   /// The untangling's rounds of its barrier (each lowers its
   /// regularisation), and L-BFGS iterations per round.
   int untangle_rounds = 40, untangle_iterations = 300;
+  /** @} */
 };
 
 /// \ingroup PkgCGALExtHex
 /// What the map found and how good it is.
 struct Integer_grid_map_report {
+  /** @{ */
   /// The tetrahedra of the input, the edges split, and the tetrahedra of
   /// the map (each split edge splits the tetrahedra around it in two).
   std::size_t tets = 0, split_edges = 0, map_tets = 0;
+  /** @} */
   /// The edges split for an untangling that was not kept.
   std::size_t split_edges_rejected = 0;
+  /** @{ */
   /// The interior faces cut by the dual spanning tree, and those still cut
   /// after gluing back every face a regular interior edge determines: the
   /// faces that carry transition functions.
   std::size_t cut_faces_tree = 0, cut_faces = 0;
+  /** @} */
   /// The vertices of the cut mesh (corners joined across uncut faces): the
   /// map's unknown points.
   std::size_t cut_vertices = 0;
+  /** @{ */
   /// The interior edges whose holonomy is not the identity, those among them
   /// put on an integer grid line (a rotation about a coordinate axis), and
   /// the others (a rotation about no axis of the frame: non-meshable edges),
   /// which no constraint can put on a grid line.
   std::size_t singular_edges = 0, singular_edges_on_grid_lines = 0, singular_edges_unconstrained = 0;
+  /** @} */
+  /** @{ */
   /// The boundary faces put on integer planes, and those left free
   /// (`Integer_grid_map_input::free_boundary`).
   std::size_t boundary_faces_constrained = 0, boundary_faces_free = 0;
+  /** @} */
   /// The solver's report (variables, equalities, integer variables, solves).
   Mixed_integer_quadratic_report solver;
+  /** @{ */
   /// The fitting error `sum_t vol_t |grad u - G_t|^2 / sum_t vol_t |G_t|^2`
   /// of the seamless map before rounding and of the map returned.
   double fit_error_relaxed = 0, fit_error = 0;
+  /** @} */
+  /** @{ */
   /// The parameter volume (the sum of the tetrahedra's signed volumes in
   /// parameter space), and the volume due, `sum_t vol_t det(G_t)`, which is
   /// `V / h^3` for hexes of edge `h` in a constant metric: about the number
   /// of hexahedra.
   double parameter_volume = 0, due_volume = 0;
+  /** @} */
   /// The tetrahedra with a negative parameter volume.
   std::size_t inverted_tets = 0;
   /// The tetrahedra with a parameter volume in `[0, 1e-3]` times its due
@@ -118,12 +132,19 @@ struct Integer_grid_map_report {
   /// The untangling's rounds and L-BFGS iterations.
   int untangle_rounds = 0, untangle_iterations = 0;
   /** @} */
+  /// The tetrahedra the untangling moved: those within three vertex rings
+  /// of an inverted or flat one.
+  std::size_t untangle_tets = 0;
+  /** @{ */
   /// The least `det(J G^-T)` (the parameter Jacobian against the target's)
-  /// over the tetrahedra, before and after the untangling: positive when
-  /// every tetrahedron is.
+  /// over the tetrahedra the untangling moved, before and after it:
+  /// positive when every one of them is.
   double min_relative_det_rounded = 0, min_relative_det = 0;
+  /** @} */
+  /** @{ */
   /// Seconds: the cut and the constraints, the solve and the rounding, the untangling.
   double seconds_setup = 0, seconds_solve = 0, seconds_untangle = 0;
+  /** @} */
 };
 
 /// \ingroup PkgCGALExtHex
@@ -186,8 +207,9 @@ struct Integer_grid_map {
 ///    foldover-free energy of Garanzha et al. 2021 on `K = J G^-T` (the
 ///    map's Jacobian against the target's), shape `tr(K^T K) / chi^(2/3)`
 ///    and volume `(det^2 + 1) / chi` in equal parts, `chi` the regularised
-///    determinant whose regularisation goes to 0 over the rounds.
-///    Where the integers hold all four vertices of a tetrahedron on one
+///    determinant whose regularisation goes to 0 over the rounds; only the
+///    points within three vertex rings of an inverted or flat tetrahedron
+///    move. Where the integers hold all four vertices of a tetrahedron on one
 ///    integer plane (its vertices all on one boundary sheet) or three on one
 ///    grid line (three vertices of a singular curve, or of a crease), no
 ///    unknown of the map can lift it. So before the untangling, each such

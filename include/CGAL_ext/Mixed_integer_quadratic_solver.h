@@ -50,8 +50,14 @@ struct Mixed_integer_quadratic_options {
   /// Whether to round at all: `false` gives the relaxed minimiser, with the
   /// equalities held and the integer variables real.
   bool round = true;
+  /// Whether the rounding takes the integer variables by the cost of their
+  /// rounding (the rise of the objective when one is fixed at its nearest
+  /// integer and the others re-optimised, `d^2 / (K^-1)_kk` for a distance
+  /// `d`: one more solve per variable and round), cheapest first; else by
+  /// their distance to their nearest integer, closest first.
+  bool least_cost_first = true;
   /// Each round fixes the integer variables whose distance to their nearest
-  /// integer is below this, the closest first, ...
+  /// integer is below this, in the order above, ...
   double rounding_threshold = 0.1;
   /// ... at most this share of those still free (at least one per round),
   /// then re-solves. 0 rounds one variable per solve.
@@ -67,20 +73,26 @@ struct Mixed_integer_quadratic_options {
 struct Mixed_integer_quadratic_report {
   /// The number of variables.
   std::size_t variables = 0;
+  /** @{ */
   /// The equalities given, those that were redundant (a combination of the
   /// others), and the variables left free after eliminating the rest.
   std::size_t equalities = 0, redundant_equalities = 0, free_variables = 0;
+  /** @} */
+  /** @{ */
   /// The integer variables given, and those among the free variables (the
   /// others are integer combinations of these).
   std::size_t integer_variables = 0, free_integer_variables = 0;
+  /** @} */
   /// Eliminated integer variables that are not an integer combination of
   /// free ones and were found non-integral after the rounding (0 when every
   /// equality among integer variables has a unit coefficient to pivot on).
   std::size_t non_integral_eliminated = 0;
   /// The linear solves (one numeric factorisation each).
   std::size_t solves = 0;
+  /** @{ */
   /// The objective `x^T H x - 2 b^T x` of the relaxed and of the rounded solution.
   double objective_relaxed = 0, objective_rounded = 0;
+  /** @} */
 };
 
 /// \ingroup PkgCGALExtHex

@@ -2,6 +2,8 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #include "foldover_free_map.h"
 
+#include <CGAL_ext/internal/deterministic_parallel.h>
+
 #include <Eigen/LU>
 
 #include <algorithm>
@@ -33,32 +35,37 @@ Eigen::Matrix<double, 3, 4> corners(const Foldover_free_problem& pb, const Eigen
 }
 
 // The energy sum_t vol_t ((1 - theta) tr(K^T K) / chi^(2/3) + theta (det^2 + 1) / chi), and its gradient in y.
+// The tetrahedra's terms are computed in parallel and added in their order:
+// the same bits whatever the number of threads.
 double energy(const Foldover_free_problem& pb, const Eigen::VectorXd& y, double eps, double theta,
               Eigen::VectorXd* gradient) {
   const Eigen::VectorXd x = *pb.E * y + *pb.c;
-  Eigen::VectorXd gx;
-  if (gradient) gx = Eigen::VectorXd::Zero(x.size());
-  double e = 0;
-  for (std::size_t t = 0; t < pb.corner.size(); ++t) {
+  const std::size_t n = pb.corner.size();
+  std::vector<double> e(n);
+  std::vector<Eigen::Matrix<double, 3, 4>> dU(gradient ? n : 0);
+  parallel_for_each_index(n, [&](std::size_t t) {
     const Eigen::Matrix<double, 3, 4> U = corners(pb, x, t);
     const Eigen::Matrix3d K = U * pb.B[t].transpose() * pb.M[t];
     const double D = K.determinant(), X = chi(D, eps), trace = K.squaredNorm();
     const double X23 = std::cbrt(X * X);
-    const double f = trace / X23, g = (D * D + 1) / X;
-    e += pb.volume[t] * ((1 - theta) * f + theta * g);
-    if (!gradient) continue;
+    e[t] = pb.volume[t] * ((1 - theta) * trace / X23 + theta * (D * D + 1) / X);
+    if (!gradient) return;
     const double dX = chi_derivative(D, eps);
     const double df_dD = -2.0 / 3.0 * trace / (X23 * X) * dX, dg_dD = 2 * D / X - (D * D + 1) / (X * X) * dX;
     const Eigen::Matrix3d dK = (1 - theta) * (2 * K / X23) + ((1 - theta) * df_dD + theta * dg_dD) * cofactor(K);
-    const Eigen::Matrix<double, 3, 4> dU = pb.volume[t] * dK * pb.M[t].transpose() * pb.B[t];
-    for (int c = 0; c < 4; ++c) gx.segment<3>(Eigen::Index(pb.corner[t][std::size_t(c)])) += dU.col(c);
-  }
+    dU[t] = pb.volume[t] * dK * pb.M[t].transpose() * pb.B[t];
+  });
+  double sum = 0;
+  for (double v : e) sum += v;
   if (gradient) {
+    Eigen::VectorXd gx = Eigen::VectorXd::Zero(x.size());
+    for (std::size_t t = 0; t < n; ++t)
+      for (int c = 0; c < 4; ++c) gx.segment<3>(Eigen::Index(pb.corner[t][std::size_t(c)])) += dU[t].col(c);
     *gradient = pb.E->transpose() * gx;
     for (Eigen::Index k = 0; k < gradient->size(); ++k)
       if (pb.fixed[std::size_t(k)]) (*gradient)[k] = 0;
   }
-  return e;
+  return sum;
 }
 
 // L-BFGS with Armijo backtracking on the energy at eps; returns the iterations.
@@ -120,11 +127,19 @@ Foldover_free_outcome untangle(const Foldover_free_problem& pb, Eigen::VectorXd&
   Foldover_free_outcome out;
   double D = out.min_det_before = min_relative_det(pb, y);
   double eps = D > 0 ? 1e-10 : std::sqrt(1e-10 + 0.04 * D * D); // the paper's start
-  double e_prev = energy(pb, y, eps, s.volume_weight, nullptr);
+  double e_prev = energy(pb, y, eps, s.volume_weight, nullptr), best = D;
+  int stalled = 0;
   for (; out.rounds < s.max_rounds; ++out.rounds) {
     out.iterations += minimise(pb, y, eps, s);
     const double e = energy(pb, y, eps, s.volume_weight, nullptr);
     D = min_relative_det(pb, y);
+    // Rounds that leave a negative least determinant no higher stop after a few.
+    stalled = D > best ? 0 : stalled + 1;
+    best = std::max(best, D);
+    if (D <= 0 && stalled >= s.stall_rounds) {
+      ++out.rounds;
+      break;
+    }
     const double sigma = std::max(1 - e / e_prev, 0.1);
     const double mu = (1 - sigma) * chi(D, eps);
     eps = D < mu ? 2 * std::sqrt(mu * (mu - D)) : 1e-10;

@@ -34,6 +34,7 @@ struct Foldover_free_settings {
   int memory = 8;                // L-BFGS pairs
   double volume_weight = 0.5;    // theta: (1 - theta) shape + theta volume
   double energy_tolerance = 1e-5;
+  int stall_rounds = 5;          // rounds without a higher least determinant, while negative, that stop it
 };
 
 struct Foldover_free_outcome {

@@ -669,14 +669,60 @@ Map_mesh refine_flat(const Integer_grid_map_input& in, const Topology& top, cons
 // the free points appended to x after `reduced_size` entries (the split
 // edges' midpoints); the integer columns are held. Returns the new x, its
 // integer variables snapped.
+// The region the untangling moves: the tetrahedra within `rings` vertex
+// rings of an inverted or flat one, and the unknown points (nodes) all of
+// whose tetrahedra are in it. Away from the defects the map stays as the
+// rounding left it, and the untangling's cost follows the defects, not the mesh.
+std::vector<char> movable_nodes(const Map_mesh& m, const Eigen::VectorXd& x, std::size_t nodes, int rings) {
+  std::vector<std::vector<std::size_t>> at(m.positions.size());
+  for (std::size_t t = 0; t < m.tets.size(); ++t)
+    for (std::size_t v : m.tets[t]) at[v].push_back(t);
+  std::vector<char> in_region(m.tets.size(), 0), reached(m.positions.size(), 0);
+  std::vector<std::size_t> front;
+  for (std::size_t t = 0; t < m.tets.size(); ++t) {
+    const Tet_measure r = measure_tet(m, x, t);
+    if (r.inverted() || r.flat()) in_region[t] = 1, front.push_back(t);
+  }
+  for (int ring = 0; ring < rings; ++ring) {
+    std::vector<std::size_t> next;
+    for (std::size_t t : front)
+      for (std::size_t v : m.tets[t]) {
+        if (reached[v]) continue;
+        reached[v] = 1;
+        for (std::size_t u : at[v])
+          if (!in_region[u]) in_region[u] = 1, next.push_back(u);
+      }
+    front.swap(next);
+  }
+  std::vector<char> movable(nodes, 1);
+  for (std::size_t t = 0; t < m.tets.size(); ++t)
+    if (!in_region[t])
+      for (std::size_t c = 0; c < 4; ++c) movable[m.node[4 * t + c]] = 0;
+  return movable;
+}
+
+// Untangles x0 on m in the solver's reduced space x = E y + c, grown by the
+// free points appended to x0 after E's rows (the split edges' midpoints).
+// Moved: the real columns of y all of whose entries of x are movable nodes
+// (`movable_nodes()`); the integer columns are held. Returns the new x, its
+// integer variables snapped.
 Eigen::VectorXd untangle_map(const Map_mesh& m, const Eigen::VectorXd& x0, const Assembly& as,
                              const Mixed_integer_quadratic_solution& sol, const Integer_grid_map_options& options,
                              Integer_grid_map_report& rep) {
   const Eigen::Index n = sol.E.rows(), k = sol.E.cols(), extra = x0.size() - n;
+  const std::vector<char> movable = movable_nodes(m, x0, std::size_t(x0.size()) / 3, 3);
   std::vector<Eigen::Triplet<double>> t;
+  std::vector<char> fixed = sol.integer_column;
+  fixed.resize(std::size_t(k + extra), 0);
   for (int j = 0; j < sol.E.outerSize(); ++j)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(sol.E, j); it; ++it) t.emplace_back(int(it.row()), j, it.value());
-  for (Eigen::Index i = 0; i < extra; ++i) t.emplace_back(int(n + i), int(k + i), 1.0);
+    for (Eigen::SparseMatrix<double>::InnerIterator it(sol.E, j); it; ++it) {
+      t.emplace_back(int(it.row()), j, it.value());
+      if (!movable[std::size_t(it.row()) / 3]) fixed[std::size_t(j)] = 1;
+    }
+  for (Eigen::Index i = 0; i < extra; ++i) {
+    t.emplace_back(int(n + i), int(k + i), 1.0);
+    if (!movable[std::size_t(n + i) / 3]) fixed[std::size_t(k + i)] = 1;
+  }
   Eigen::SparseMatrix<double> E(n + extra, k + extra);
   E.setFromTriplets(t.begin(), t.end());
   Eigen::VectorXd c = Eigen::VectorXd::Zero(n + extra), y(k + extra);
@@ -684,25 +730,25 @@ Eigen::VectorXd untangle_map(const Map_mesh& m, const Eigen::VectorXd& x0, const
   y << sol.y, x0.tail(extra);
   internal::Foldover_free_problem pb;
   const Integer_grid_map_input geometry = m.as_input();
-  const std::size_t nt = m.tets.size();
-  pb.corner.resize(nt);
-  pb.B.resize(nt);
-  pb.M.resize(nt);
-  pb.volume.resize(nt);
-  for (std::size_t i = 0; i < nt; ++i) {
-    for (std::size_t j = 0; j < 4; ++j) pb.corner[i][j] = 3 * m.node[4 * i + j];
-    pb.B[i] = gradient_operator(geometry, i, pb.volume[i]);
-    pb.M[i] = m.target[i].inverse();
+  for (std::size_t i = 0; i < m.tets.size(); ++i) { // the tetrahedra a movable point moves
+    bool moves = false;
+    for (std::size_t j = 0; j < 4; ++j) moves = moves || movable[m.node[4 * i + j]];
+    if (!moves) continue;
+    pb.corner.push_back({});
+    for (std::size_t j = 0; j < 4; ++j) pb.corner.back()[j] = 3 * m.node[4 * i + j];
+    pb.volume.push_back(0);
+    pb.B.push_back(gradient_operator(geometry, i, pb.volume.back()));
+    pb.M.push_back(m.target[i].inverse());
   }
   pb.E = &E;
   pb.c = &c;
-  pb.fixed = sol.integer_column;
-  pb.fixed.resize(std::size_t(k + extra), 0);
+  pb.fixed = std::move(fixed);
   internal::Foldover_free_settings settings;
   settings.max_rounds = options.untangle_rounds;
   settings.max_iterations = options.untangle_iterations;
   const internal::Foldover_free_outcome out = internal::untangle(pb, y, settings);
   rep.untangled = true;
+  rep.untangle_tets = pb.corner.size();
   rep.untangle_rounds = out.rounds;
   rep.untangle_iterations = out.iterations;
   rep.min_relative_det_rounded = out.min_det_before;

@@ -267,14 +267,27 @@ Mixed_integer_quadratic_solution solve_mixed_integer_quadratic(const Mixed_integ
     if (rep.solves == 1) rep.objective_relaxed = objective(pb, r.E * y + r.c);
     if (!options.round || left == 0) break;
 
-    // The free integer columns by distance to their nearest integer.
+    // The free integer columns by the cost of their rounding: the rise of
+    // the objective when the column alone is fixed at its nearest integer
+    // and the rest re-optimised, d^2 / (K^-1)_kk for a distance d; or by d.
     std::vector<std::pair<double, std::size_t>> order;
-    for (std::size_t k : integer_columns)
-      if (!fixed[k]) order.push_back({std::abs(y[Eigen::Index(k)] - std::round(y[Eigen::Index(k)])), k});
+    for (std::size_t k : integer_columns) {
+      if (fixed[k]) continue;
+      const double d = std::abs(y[Eigen::Index(k)] - std::round(y[Eigen::Index(k)]));
+      double key = d;
+      if (options.least_cost_first) {
+        const Eigen::VectorXd z = ldlt.solve(Eigen::VectorXd::Unit(Eigen::Index(m), Eigen::Index(k)));
+        key = d * d / std::max(z[Eigen::Index(k)], 1e-300);
+      }
+      order.push_back({key, k});
+    }
     std::sort(order.begin(), order.end());
     const std::size_t cap = std::max<std::size_t>(1, std::size_t(options.rounding_batch_share * double(left)));
     std::size_t take = 0;
-    while (take < order.size() && take < cap && order[take].first < options.rounding_threshold) ++take;
+    while (take < order.size() && take < cap &&
+           std::abs(y[Eigen::Index(order[take].second)] - std::round(y[Eigen::Index(order[take].second)])) <
+               options.rounding_threshold)
+      ++take;
     take = std::max<std::size_t>(take, 1);
     for (std::size_t a = 0; a < take; ++a) {
       const std::size_t k = order[a].second;
