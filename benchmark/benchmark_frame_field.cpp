@@ -5,6 +5,8 @@
 // meshed by Mesh_3 at decreasing sizes, then the whole generation with an
 // anisotropic, varying metric; wall time per stage and the process's peak
 // memory (resident set high-water mark, so run the sizes in increasing order).
+// Then the field's integer-grid map (generate --hexes), timed apart and set
+// against the field's time.
 //
 //   benchmark_frame_field INPUT SIZE [SIZE ...] [linear_tolerance=X] [energy_tolerance=X]
 //                         [aggregate_size=N] [trace]
@@ -15,7 +17,9 @@
 #include <CGAL_ext/Frame_field_3.h>
 #include <CGAL_ext/Frame_field_repair_3.h>
 #include <CGAL_ext/Frame_field_singularities_3.h>
+#include <CGAL_ext/Integer_grid_map_3.h>
 #include <CGAL_ext/Metric_field_3.h>
+#include <CGAL_ext/make_integer_grid_map_input.h>
 #include <CGAL_ext/build_triangulation_from_tets.h>
 #include <CGAL_ext/tetrahedralize.h>
 
@@ -75,8 +79,9 @@ static int run(int argc, char** argv) {
   std::printf("Frame-field generation on %s, %d threads; metric g = diag(1, 4, 1) (1 + |x|^2 / d^2)^2 with d the\n"
               "bounding-box diagonal (anisotropic, varying: non-trivial transports). Seconds per stage.\n\n",
               input.c_str(), tbb::info::default_concurrency());
-  std::printf("%8s %9s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s %9s %8s\n", "size", "tets", "Mesh_3", "build", "setup",
-              "transp", "linear", "project", "refine", "repair", "singul", "total*", "us/tet*", "peak GB");
+  std::printf("%8s %9s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s %9s %8s %8s %8s\n", "size", "tets", "Mesh_3", "build",
+              "setup", "transp", "linear", "project", "refine", "repair", "singul", "total*", "us/tet*", "map", "map/tot",
+              "peak GB");
   std::printf("linear_tolerance %g, energy_tolerance %g, aggregate_size %d; repair: %d restarts in the second round, "
               "at most %d further rounds and %d released ones, L-BFGS memory %d\n",
               options.linear_tolerance, options.energy_tolerance, options.aggregate_size,
@@ -115,10 +120,24 @@ static int run(int argc, char** argv) {
     const auto sing = CGAL_ext::singular_edges(ff);
     const double t_sing = since(t);
     const double total = since(start);
-    std::printf("%8.4g %9zu %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %9.2f %8.2f\n", mo.size,
-                ff.size(), t_mesh, t_build, st.seconds_setup, st.seconds_transports, st.seconds_linear,
+    t = std::chrono::steady_clock::now();
+    std::vector<Eigen::Vector3d> positions;
+    for (const auto& p : mesh.vertices) positions.push_back({p[0], p[1], p[2]});
+    const CGAL_ext::Frame_field_matchings_3<CGAL_ext::Frame_field_3<Field>> matchings(ff);
+    const CGAL_ext::Integer_grid_map map =
+        CGAL_ext::compute_integer_grid_map(CGAL_ext::make_integer_grid_map_input(ff, matchings, positions));
+    const double t_map = since(t);
+    std::printf("%8.4g %9zu %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %9.2f %8.2f %8.2f %8.2f\n",
+                mo.size, ff.size(), t_mesh, t_build, st.seconds_setup, st.seconds_transports, st.seconds_linear,
                 st.seconds_projection, st.seconds_refinement, repair.seconds, t_sing, total,
-                1e6 * total / double(ff.size()), peak_gb());
+                1e6 * total / double(ff.size()), t_map, t_map / total, peak_gb());
+    const CGAL_ext::Integer_grid_map_report& mr = map.report;
+    std::printf("%8s map: setup %.2f s, solve %.2f s (%zu free variables, %zu integer, %zu solves), untangling %.2f s "
+                "(%zu tetrahedra); inverted and flat tetrahedra %zu and %zu, rounded %zu and %zu; parameter volume "
+                "%.0f of %.0f due\n",
+                "", mr.seconds_setup, mr.seconds_solve, mr.solver.free_variables, mr.solver.free_integer_variables,
+                mr.solver.solves, mr.seconds_untangle, mr.untangle_tets, mr.inverted_tets, mr.flat_tets,
+                mr.inverted_tets_rounded, mr.flat_tets_rounded, mr.parameter_volume, mr.due_volume);
     std::printf("%8s CG %d (residual %.1e; coarse: %d on %zu aggregates), L-BFGS %d, energy %.4g -> %.4g, %zu singular edges (repair: %zu -> %zu "
                 "non-meshable, %zu rounds, %zu of %zu regions kept, %zu L-BFGS iterations of %.0f tetrahedra on average), boundary error mean %.3g max %.3g deg\n",
                 "", st.linear_iterations, st.linear_residual, st.coarse_iterations, st.coarse_unknowns / 9,
@@ -130,7 +149,8 @@ static int run(int argc, char** argv) {
     std::fflush(stdout);
   }
   std::printf("\n* total: from the mesh to the singular edges (triangulation, metric, frame field, repair of\n"
-              "  non-meshable edges, singular edges), without Mesh_3 and without writing files.\n");
+              "  non-meshable edges, singular edges), without Mesh_3, without the map and without writing files.\n"
+              "  map: the integer-grid map (matchings, cut, solve, rounding, untangling); map/tot: its time over total.\n");
   return 0;
 }
 

@@ -200,8 +200,8 @@ struct Integer_grid_map {
 ///    axes meet, on grid points. One vertex per component is pinned at 0.
 /// 4. **Fit and quantization.** The parameters minimise
 ///    `sum_t vol_t |grad u - G_t|^2` under the equalities, the integer
-///    variables rounded greedily with re-solves
-///    (`solve_mixed_integer_quadratic()`).
+///    variables rounded greedily with re-solves, cheapest first (the rise
+///    of the fit's energy, `solve_mixed_integer_quadratic()`).
 /// 5. **Untangling.** If tetrahedra are inverted or flat, the real unknowns
 ///    (the equalities and the rounded integers held) minimise the
 ///    foldover-free energy of Garanzha et al. 2021 on `K = J G^-T` (the

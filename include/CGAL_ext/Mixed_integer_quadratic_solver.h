@@ -128,7 +128,7 @@ struct Mixed_integer_quadratic_solution {
 ///
 /// **Rounding.** The reduced system (a Cholesky factorisation,
 /// `Eigen::SimplicialLDLT`, on a pattern analysed once) is solved, the
-/// integer variables nearest to integers fixed (see
+/// integer variables cheapest to round fixed (see
 /// `Mixed_integer_quadratic_options`), and solved again, until every integer
 /// variable is fixed. Greedy: the result is not the integer optimum.
 ///

@@ -2,7 +2,6 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #include <CGAL_ext/Integer_grid_map_3.h>
 #include <CGAL_ext/Octahedral_frame.h>
-#include <CGAL_ext/tet_face_neighbors.h>
 
 #include "foldover_free_map.h"
 
@@ -251,16 +250,18 @@ void glue(Topology& top, const std::vector<Edge_loop>& loops) {
   }
 }
 
-// Splits the given edges (vertex pairs of the input) at their midpoints:
-// each tetrahedron around one becomes two with the same orientation, the
-// half at the edge's first vertex keeping its index. The halves keep their
-// parent's gradients and free-boundary flag; faces inside a parent match by
-// the identity, the others as the parents' faces.
-Integer_grid_map_input split_edges(const Integer_grid_map_input& in, const std::vector<std::array<std::size_t, 2>>& edges,
-                                   std::vector<std::size_t>& parent) {
-  Integer_grid_map_input out = in;
-  parent.resize(in.tets.size());
-  std::iota(parent.begin(), parent.end(), std::size_t(0));
+// The input's mesh with edges (vertex pairs) split at their midpoints: each
+// tetrahedron around one becomes two with the same orientation, the half at
+// the edge's first vertex keeping its index; `parent` maps them to the input's.
+struct Split_mesh {
+  std::vector<Eigen::Vector3d> positions;
+  std::vector<std::array<std::size_t, 4>> tets;
+  std::vector<std::size_t> parent;
+};
+
+Split_mesh split_edges(const Integer_grid_map_input& in, const std::vector<std::array<std::size_t, 2>>& edges) {
+  Split_mesh out{in.positions, in.tets, std::vector<std::size_t>(in.tets.size())};
+  std::iota(out.parent.begin(), out.parent.end(), std::size_t(0));
   std::vector<std::vector<std::size_t>> at(in.positions.size()); // the tetrahedra at each vertex
   for (std::size_t t = 0; t < in.tets.size(); ++t)
     for (std::size_t v : in.tets[t]) at[v].push_back(t);
@@ -274,35 +275,13 @@ Integer_grid_map_input split_edges(const Integer_grid_map_input& in, const std::
     for (std::size_t t : around) {
       const std::size_t t2 = out.tets.size();
       std::array<std::size_t, 4> q2 = out.tets[t];
-      q2[std::size_t(local_index(q2, a))] = m; // the half at b
+      q2[std::size_t(local_index(q2, a))] = m;                  // the half at b
       out.tets[t][std::size_t(local_index(out.tets[t], b))] = m; // the half at a keeps slot t
       out.tets.push_back(q2);
-      parent.push_back(parent[t]);
+      out.parent.push_back(out.parent[t]);
       at[b].erase(std::find(at[b].begin(), at[b].end(), t));
       for (std::size_t v : q2) at[v].push_back(t2);
       at[m].push_back(t);
-    }
-  }
-  const std::size_t n = out.tets.size();
-  out.neighbors = tet_face_neighbors(out.tets);
-  out.matchings.assign(n, {-1, -1, -1, -1});
-  out.gradients.resize(n);
-  if (!in.free_boundary.empty()) out.free_boundary.resize(n);
-  for (std::size_t t = 0; t < n; ++t) {
-    const std::size_t p = parent[t];
-    out.gradients[t] = in.gradients[p];
-    if (!in.free_boundary.empty()) out.free_boundary[t] = in.free_boundary[p];
-    for (std::size_t f = 0; f < 4; ++f) {
-      const std::int64_t u = out.neighbors[t][f];
-      if (u < 0) continue;
-      const std::size_t q = parent[std::size_t(u)];
-      if (q == p) {
-        out.matchings[t][f] = 0;
-        continue;
-      }
-      for (std::size_t g = 0; g < 4; ++g)
-        if (in.neighbors[p][g] == std::int64_t(q)) out.matchings[t][f] = in.matchings[p][g];
-      if (out.matchings[t][f] < 0) throw std::logic_error("compute_integer_grid_map: a split face has no parent face");
     }
   }
   return out;
@@ -345,9 +324,8 @@ Eigen::Matrix3d combed_jacobian(const Integer_grid_map_input& in, const Topology
 }
 
 // The matrix B (3 x 4) of a tetrahedron: grad u = B (u_0 .. u_3)^T.
-Eigen::Matrix<double, 3, 4> gradient_operator(const Integer_grid_map_input& in, std::size_t t, double& volume) {
-  const auto& p = in.positions;
-  const auto& q = in.tets[t];
+Eigen::Matrix<double, 3, 4> gradient_operator(const std::vector<Eigen::Vector3d>& p, const std::array<std::size_t, 4>& q,
+                                              double& volume) {
   Eigen::Matrix3d D;
   D << p[q[1]] - p[q[0]], p[q[2]] - p[q[0]], p[q[3]] - p[q[0]];
   volume = D.determinant() / 6;
@@ -474,7 +452,7 @@ void add_objective(const Integer_grid_map_input& in, const Topology& top, const 
   Eigen::VectorXd b = Eigen::VectorXd::Zero(Eigen::Index(as.variables));
   for (std::size_t t = 0; t < n; ++t) {
     double vol = 0;
-    const Eigen::Matrix<double, 3, 4> B = gradient_operator(in, t, vol);
+    const Eigen::Matrix<double, 3, 4> B = gradient_operator(in.positions, in.tets[t], vol);
     const Eigen::Matrix4d K = vol * B.transpose() * B;
     const Eigen::Matrix3d J = combed_jacobian(in, top, t);
     as.target_norm += vol * J.squaredNorm();
@@ -505,12 +483,6 @@ struct Map_mesh {
   std::vector<std::array<std::size_t, 4>> tets;
   std::vector<std::size_t> parent, node; // per tetrahedron; per corner 4 t + c
   std::vector<Eigen::Matrix3d> target;   // per tetrahedron: C G^T, the rows the gradients fit
-  Integer_grid_map_input as_input() const {
-    Integer_grid_map_input m;
-    m.positions = positions;
-    m.tets = tets;
-    return m;
-  }
 };
 
 Map_mesh unrefined(const Integer_grid_map_input& in, const Topology& top, const std::vector<std::size_t>& node) {
@@ -535,18 +507,14 @@ struct Tet_measure {
 };
 
 Tet_measure measure_tet(const Map_mesh& m, const Eigen::VectorXd& x, std::size_t t) {
-  const auto& p = m.positions;
-  const auto& q = m.tets[t];
-  Eigen::Matrix3d D, P;
-  D << p[q[1]] - p[q[0]], p[q[2]] - p[q[0]], p[q[3]] - p[q[0]];
+  double vol = 0;
+  const Eigen::Matrix<double, 3, 4> B = gradient_operator(m.positions, m.tets[t], vol);
   Eigen::Matrix<double, 3, 4> U;
   for (std::size_t c = 0; c < 4; ++c) U.col(Eigen::Index(c)) = corner(m, x, t, c);
+  Eigen::Matrix3d P;
   P << U.col(1) - U.col(0), U.col(2) - U.col(0), U.col(3) - U.col(0);
-  Eigen::Matrix<double, 3, 4> S;
-  S << -1, 1, 0, 0, -1, 0, 1, 0, -1, 0, 0, 1;
-  const Eigen::Matrix3d grad = U * (D.transpose().inverse() * S).transpose(); // rows: grad u_k
+  const Eigen::Matrix3d grad = U * B.transpose(); // rows: grad u_k
   Tet_measure r;
-  const double vol = D.determinant() / 6;
   r.parameter_volume = P.determinant() / 6;
   r.due = vol * m.target[t].determinant();
   r.fit = vol * (grad - m.target[t]).squaredNorm();
@@ -646,8 +614,8 @@ Map_mesh refine_flat(const Integer_grid_map_input& in, const Topology& top, cons
     if (chosen[e]) edges.push_back(top.edges[e]), start.push_back(*chosen[e]);
   split = edges.size();
   if (edges.empty()) return base;
-  std::vector<std::size_t> parent;
-  const Integer_grid_map_input fine = split_edges(in, edges, parent);
+  const Split_mesh fine = split_edges(in, edges);
+  const std::vector<std::size_t>& parent = fine.parent;
   const std::size_t nv = in.positions.size(), first_new = std::size_t(x.size()) / 3;
   Map_mesh m{fine.positions, fine.tets, parent, std::vector<std::size_t>(4 * fine.tets.size()), {}};
   Eigen::VectorXd grown = Eigen::VectorXd::Zero(x.size() + Eigen::Index(3 * edges.size()));
@@ -729,7 +697,6 @@ Eigen::VectorXd untangle_map(const Map_mesh& m, const Eigen::VectorXd& x0, const
   c.head(n) = sol.c;
   y << sol.y, x0.tail(extra);
   internal::Foldover_free_problem pb;
-  const Integer_grid_map_input geometry = m.as_input();
   for (std::size_t i = 0; i < m.tets.size(); ++i) { // the tetrahedra a movable point moves
     bool moves = false;
     for (std::size_t j = 0; j < 4; ++j) moves = moves || movable[m.node[4 * i + j]];
@@ -737,7 +704,7 @@ Eigen::VectorXd untangle_map(const Map_mesh& m, const Eigen::VectorXd& x0, const
     pb.corner.push_back({});
     for (std::size_t j = 0; j < 4; ++j) pb.corner.back()[j] = 3 * m.node[4 * i + j];
     pb.volume.push_back(0);
-    pb.B.push_back(gradient_operator(geometry, i, pb.volume.back()));
+    pb.B.push_back(gradient_operator(m.positions, m.tets[i], pb.volume.back()));
     pb.M.push_back(m.target[i].inverse());
   }
   pb.E = &E;
@@ -815,6 +782,7 @@ Integer_grid_map compute_integer_grid_map(const Integer_grid_map_input& in, cons
   const auto solve_start = Clock::now();
   rep.seconds_setup = std::chrono::duration<double>(solve_start - start).count();
 
+  Map_mesh mesh = unrefined(in, top, node);
   Mixed_integer_quadratic_options mo = options.rounding;
   mo.round = options.quantize;
   const Mixed_integer_quadratic_solution sol = solve_mixed_integer_quadratic(as.problem, mo);
@@ -822,7 +790,6 @@ Integer_grid_map compute_integer_grid_map(const Integer_grid_map_input& in, cons
   rep.seconds_solve = std::chrono::duration<double>(Clock::now() - solve_start).count();
 
   map.chart = top.chart;
-  Map_mesh mesh = unrefined(in, top, node);
   Eigen::VectorXd x = sol.x;
   measure(mesh, x, rep);
   rep.inverted_tets_rounded = rep.inverted_tets;

@@ -212,6 +212,70 @@ double objective(const Mixed_integer_quadratic_problem& pb, const Eigen::VectorX
   return x.dot(pb.H * x) - 2 * pb.b.dot(x);
 }
 
+// The reduced system with some columns fixed at values (identity rows): the
+// pattern stays, so it is analysed once and each solve factorises it again.
+class Fixing_solver {
+public:
+  explicit Fixing_solver(const Reduced& r)
+      : r_(r), K_(r.Hr), fixed_(std::size_t(r.Hr.rows()), 0), value_(Eigen::VectorXd::Zero(r.Hr.rows())) {
+    ldlt_.analyzePattern(r.Hr);
+  }
+
+  Eigen::VectorXd solve() {
+    Eigen::VectorXd rhs = r_.br;
+    for (int k = 0; k < K_.outerSize(); ++k) {
+      Eigen::SparseMatrix<double>::InnerIterator orig(r_.Hr, k);
+      for (Eigen::SparseMatrix<double>::InnerIterator it(K_, k); it; ++it, ++orig) {
+        const auto row = std::size_t(it.row());
+        if (fixed_[std::size_t(k)] && !fixed_[row]) rhs[it.row()] -= orig.value() * value_[k];
+        it.valueRef() = (fixed_[row] || fixed_[std::size_t(k)]) ? (it.row() == k ? 1.0 : 0.0) : orig.value();
+      }
+    }
+    for (std::size_t k = 0; k < fixed_.size(); ++k)
+      if (fixed_[k]) rhs[Eigen::Index(k)] = value_[Eigen::Index(k)];
+    ldlt_.factorize(K_);
+    if (ldlt_.info() != Eigen::Success)
+      throw std::runtime_error("solve_mixed_integer_quadratic: the reduced system is not positive definite");
+    Eigen::VectorXd y = ldlt_.solve(rhs);
+    ++solves;
+    for (std::size_t k = 0; k < fixed_.size(); ++k)
+      if (fixed_[k]) y[Eigen::Index(k)] = value_[Eigen::Index(k)];
+    return y;
+  }
+
+  void fix(std::size_t k, double v) { fixed_[k] = 1, value_[Eigen::Index(k)] = v; }
+  bool fixed(std::size_t k) const { return fixed_[k] != 0; }
+  // (K^-1)_kk of the last factorisation: how freely column k moves.
+  double inverse_diagonal(std::size_t k) const {
+    return ldlt_.solve(Eigen::VectorXd::Unit(K_.rows(), Eigen::Index(k)))[Eigen::Index(k)];
+  }
+
+  std::size_t solves = 0;
+
+private:
+  const Reduced& r_;
+  Eigen::SparseMatrix<double> K_;
+  std::vector<char> fixed_;
+  Eigen::VectorXd value_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
+};
+
+// The free integer columns, cheapest to round first: by the rise of the
+// objective when the column alone is fixed at its nearest integer and the
+// rest re-optimised, d^2 / (K^-1)_kk for a distance d; or by d.
+std::vector<std::pair<double, std::size_t>> rounding_order(const Fixing_solver& fs, const Eigen::VectorXd& y,
+                                                           const std::vector<std::size_t>& integer_columns,
+                                                           bool least_cost) {
+  std::vector<std::pair<double, std::size_t>> order;
+  for (std::size_t k : integer_columns) {
+    if (fs.fixed(k)) continue;
+    const double d = std::abs(y[Eigen::Index(k)] - std::round(y[Eigen::Index(k)]));
+    order.push_back({least_cost ? d * d / std::max(fs.inverse_diagonal(k), 1e-300) : d, k});
+  }
+  std::sort(order.begin(), order.end());
+  return order;
+}
+
 } // namespace
 
 Mixed_integer_quadratic_solution solve_mixed_integer_quadratic(const Mixed_integer_quadratic_problem& pb,
@@ -232,70 +296,30 @@ Mixed_integer_quadratic_solution solve_mixed_integer_quadratic(const Mixed_integ
   const Reduced r = reduce(pb, elim, options.regularization);
   const std::size_t m = r.free.size();
   rep.free_variables = m;
-
   std::vector<std::size_t> integer_columns;
   for (std::size_t k = 0; k < m; ++k)
     if (is_integer[r.free[k]]) integer_columns.push_back(k);
   rep.free_integer_variables = integer_columns.size();
 
-  // Fixed columns become identity rows; the pattern stays, so it is analysed once.
-  std::vector<char> fixed(m, 0);
-  Eigen::VectorXd value = Eigen::VectorXd::Zero(Eigen::Index(m)), y;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
-  ldlt.analyzePattern(r.Hr);
-  Eigen::SparseMatrix<double> K = r.Hr;
-  std::size_t left = integer_columns.size();
-  for (;;) {
-    Eigen::VectorXd rhs = r.br;
-    for (int k = 0; k < K.outerSize(); ++k) {
-      Eigen::SparseMatrix<double>::InnerIterator orig(r.Hr, k);
-      for (Eigen::SparseMatrix<double>::InnerIterator it(K, k); it; ++it, ++orig) {
-        const auto row = std::size_t(it.row());
-        if (fixed[std::size_t(k)] && !fixed[row]) rhs[it.row()] -= orig.value() * value[k];
-        it.valueRef() = (fixed[row] || fixed[std::size_t(k)]) ? (it.row() == k ? 1.0 : 0.0) : orig.value();
-      }
-    }
-    for (std::size_t k = 0; k < m; ++k)
-      if (fixed[k]) rhs[Eigen::Index(k)] = value[Eigen::Index(k)];
-    ldlt.factorize(K);
-    if (ldlt.info() != Eigen::Success)
-      throw std::runtime_error("solve_mixed_integer_quadratic: the reduced system is not positive definite");
-    y = ldlt.solve(rhs);
-    ++rep.solves;
-    for (std::size_t k = 0; k < m; ++k)
-      if (fixed[k]) y[Eigen::Index(k)] = value[Eigen::Index(k)];
-    if (rep.solves == 1) rep.objective_relaxed = objective(pb, r.E * y + r.c);
-    if (!options.round || left == 0) break;
-
-    // The free integer columns by the cost of their rounding: the rise of
-    // the objective when the column alone is fixed at its nearest integer
-    // and the rest re-optimised, d^2 / (K^-1)_kk for a distance d; or by d.
-    std::vector<std::pair<double, std::size_t>> order;
-    for (std::size_t k : integer_columns) {
-      if (fixed[k]) continue;
-      const double d = std::abs(y[Eigen::Index(k)] - std::round(y[Eigen::Index(k)]));
-      double key = d;
-      if (options.least_cost_first) {
-        const Eigen::VectorXd z = ldlt.solve(Eigen::VectorXd::Unit(Eigen::Index(m), Eigen::Index(k)));
-        key = d * d / std::max(z[Eigen::Index(k)], 1e-300);
-      }
-      order.push_back({key, k});
-    }
-    std::sort(order.begin(), order.end());
+  Fixing_solver fs(r);
+  Eigen::VectorXd y = fs.solve();
+  rep.objective_relaxed = objective(pb, r.E * y + r.c);
+  std::size_t left = options.round ? integer_columns.size() : 0;
+  while (left > 0) {
+    const auto order = rounding_order(fs, y, integer_columns, options.least_cost_first);
     const std::size_t cap = std::max<std::size_t>(1, std::size_t(options.rounding_batch_share * double(left)));
     std::size_t take = 0;
-    while (take < order.size() && take < cap &&
-           std::abs(y[Eigen::Index(order[take].second)] - std::round(y[Eigen::Index(order[take].second)])) <
-               options.rounding_threshold)
-      ++take;
+    auto distance = [&](std::size_t a) {
+      const double v = y[Eigen::Index(order[a].second)];
+      return std::abs(v - std::round(v));
+    };
+    while (take < order.size() && take < cap && distance(take) < options.rounding_threshold) ++take;
     take = std::max<std::size_t>(take, 1);
-    for (std::size_t a = 0; a < take; ++a) {
-      const std::size_t k = order[a].second;
-      fixed[k] = 1;
-      value[Eigen::Index(k)] = std::round(y[Eigen::Index(k)]);
-    }
+    for (std::size_t a = 0; a < take; ++a) fs.fix(order[a].second, std::round(y[Eigen::Index(order[a].second)]));
     left -= take;
+    y = fs.solve();
   }
+  rep.solves = fs.solves;
   out.x = r.E * y + r.c;
   for (std::size_t i = 0; i < n; ++i)
     if (is_integer[i] && options.round) {
