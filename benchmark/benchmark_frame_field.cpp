@@ -5,8 +5,9 @@
 // meshed by Mesh_3 at decreasing sizes, then the whole generation with an
 // anisotropic, varying metric; wall time per stage and the process's peak
 // memory (resident set high-water mark, so run the sizes in increasing order).
-// Then the field's integer-grid map (generate --hexes), timed apart and set
-// against the field's time.
+// Then the field's integer-grid map (generate --hexes) with hexes of the
+// Mesh_3 size where the metric is the identity, timed apart and set against
+// the field's time.
 //
 //   benchmark_frame_field INPUT SIZE [SIZE ...] [linear_tolerance=X] [energy_tolerance=X]
 //                         [aggregate_size=N] [trace]
@@ -124,8 +125,9 @@ static int run(int argc, char** argv) {
     std::vector<Eigen::Vector3d> positions;
     for (const auto& p : mesh.vertices) positions.push_back({p[0], p[1], p[2]});
     const CGAL_ext::Frame_field_matchings_3<CGAL_ext::Frame_field_3<Field>> matchings(ff);
+    // Hexes of the Mesh_3 size where the metric is the identity (y edges half as long).
     const CGAL_ext::Integer_grid_map map =
-        CGAL_ext::compute_integer_grid_map(CGAL_ext::make_integer_grid_map_input(ff, matchings, positions));
+        CGAL_ext::compute_integer_grid_map(CGAL_ext::make_integer_grid_map_input(ff, matchings, positions, mo.size));
     const double t_map = since(t);
     std::printf("%8.4g %9zu %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %9.2f %8.2f %8.2f %8.2f\n",
                 mo.size, ff.size(), t_mesh, t_build, st.seconds_setup, st.seconds_transports, st.seconds_linear,

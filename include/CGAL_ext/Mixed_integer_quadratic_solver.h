@@ -87,7 +87,8 @@ struct Mixed_integer_quadratic_report {
   /// free ones and were found non-integral after the rounding (0 when every
   /// equality among integer variables has a unit coefficient to pivot on).
   std::size_t non_integral_eliminated = 0;
-  /// The linear solves (one numeric factorisation each).
+  /// The solves of the reduced system: the first factorises it, the others
+  /// (one per rounding round) are low-rank updates of that solution.
   std::size_t solves = 0;
   /** @{ */
   /// The objective `x^T H x - 2 b^T x` of the relaxed and of the rounded solution.
@@ -126,11 +127,15 @@ struct Mixed_integer_quadratic_solution {
 /// fewest eliminated expressions use, which keeps the expressions short. The
 /// equalities hold exactly up to rounding of the coefficients' arithmetic.
 ///
-/// **Rounding.** The reduced system (a Cholesky factorisation,
-/// `Eigen::SimplicialLDLT`, on a pattern analysed once) is solved, the
-/// integer variables cheapest to round fixed (see
-/// `Mixed_integer_quadratic_options`), and solved again, until every integer
-/// variable is fixed. Greedy: the result is not the integer optimum.
+/// **Rounding.** The reduced system is factorised once (a sparse Cholesky
+/// factorisation, `Eigen::SimplicialLDLT`) and solved, with one more solve
+/// per integer variable for its column of the inverse. Then the integer
+/// variables cheapest to round are fixed (see
+/// `Mixed_integer_quadratic_options`) and the system solved again with them
+/// fixed, until every integer variable is: each re-solve is a dense system
+/// of the fixed variables' size (the Schur complement of the first
+/// factorisation), not a factorisation. Greedy: the result is not the
+/// integer optimum.
 ///
 /// Serial and deterministic: the same problem gives the same bits.
 /// \param problem the problem

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #include <CGAL_ext/Mixed_integer_quadratic_solver.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/SparseCholesky>
 
 #include <algorithm>
@@ -212,52 +213,68 @@ double objective(const Mixed_integer_quadratic_problem& pb, const Eigen::VectorX
   return x.dot(pb.H * x) - 2 * pb.b.dot(x);
 }
 
-// The reduced system with some columns fixed at values (identity rows): the
-// pattern stays, so it is analysed once and each solve factorises it again.
+// The reduced system K y = br with some integer columns fixed at values,
+// from one factorisation of K: fixing the columns F is the constraint
+// C^T y = v (C the columns of I at F), whose solution is
+// y = y0 - Z_F S^-1 (y0_F - v), with y0 = K^-1 br, Z = K^-1 C over all the
+// integer columns (one solve each, made once) and S = C^T Z_F. Each re-solve
+// is then a small dense system, not a factorisation.
 class Fixing_solver {
 public:
-  explicit Fixing_solver(const Reduced& r)
-      : r_(r), K_(r.Hr), fixed_(std::size_t(r.Hr.rows()), 0), value_(Eigen::VectorXd::Zero(r.Hr.rows())) {
-    ldlt_.analyzePattern(r.Hr);
+  Fixing_solver(const Reduced& r, const std::vector<std::size_t>& integer_columns)
+      : position_(std::size_t(r.Hr.rows()), std::size_t(-1)) {
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(r.Hr);
+    if (ldlt.info() != Eigen::Success)
+      throw std::runtime_error("solve_mixed_integer_quadratic: the reduced system is not positive definite");
+    y0_ = ldlt.solve(r.br);
+    Z_.resize(r.Hr.rows(), Eigen::Index(integer_columns.size()));
+    for (std::size_t p = 0; p < integer_columns.size(); ++p) {
+      position_[integer_columns[p]] = p;
+      Z_.col(Eigen::Index(p)) = ldlt.solve(Eigen::VectorXd::Unit(r.Hr.rows(), Eigen::Index(integer_columns[p])));
+    }
   }
 
   Eigen::VectorXd solve() {
-    Eigen::VectorXd rhs = r_.br;
-    for (int k = 0; k < K_.outerSize(); ++k) {
-      Eigen::SparseMatrix<double>::InnerIterator orig(r_.Hr, k);
-      for (Eigen::SparseMatrix<double>::InnerIterator it(K_, k); it; ++it, ++orig) {
-        const auto row = std::size_t(it.row());
-        if (fixed_[std::size_t(k)] && !fixed_[row]) rhs[it.row()] -= orig.value() * value_[k];
-        it.valueRef() = (fixed_[row] || fixed_[std::size_t(k)]) ? (it.row() == k ? 1.0 : 0.0) : orig.value();
-      }
-    }
-    for (std::size_t k = 0; k < fixed_.size(); ++k)
-      if (fixed_[k]) rhs[Eigen::Index(k)] = value_[Eigen::Index(k)];
-    ldlt_.factorize(K_);
-    if (ldlt_.info() != Eigen::Success)
-      throw std::runtime_error("solve_mixed_integer_quadratic: the reduced system is not positive definite");
-    Eigen::VectorXd y = ldlt_.solve(rhs);
     ++solves;
-    for (std::size_t k = 0; k < fixed_.size(); ++k)
-      if (fixed_[k]) y[Eigen::Index(k)] = value_[Eigen::Index(k)];
+    const auto f = Eigen::Index(fixed_.size());
+    Eigen::MatrixXd S(f, f);
+    Eigen::VectorXd d(f);
+    for (Eigen::Index a = 0; a < f; ++a) {
+      d[a] = y0_[Eigen::Index(fixed_[std::size_t(a)])] - value_[std::size_t(a)];
+      for (Eigen::Index b = 0; b < f; ++b) S(a, b) = Z_(Eigen::Index(fixed_[std::size_t(a)]), column(std::size_t(b)));
+    }
+    S_ = S.ldlt();
+    Eigen::VectorXd y = y0_;
+    if (f > 0) {
+      const Eigen::VectorXd lambda = S_.solve(d);
+      for (Eigen::Index b = 0; b < f; ++b) y -= lambda[b] * Z_.col(column(std::size_t(b)));
+    }
+    for (std::size_t a = 0; a < fixed_.size(); ++a) y[Eigen::Index(fixed_[a])] = value_[a]; // exact
     return y;
   }
 
-  void fix(std::size_t k, double v) { fixed_[k] = 1, value_[Eigen::Index(k)] = v; }
-  bool fixed(std::size_t k) const { return fixed_[k] != 0; }
-  // (K^-1)_kk of the last factorisation: how freely column k moves.
+  void fix(std::size_t k, double v) { fixed_.push_back(k), value_.push_back(v); }
+  bool fixed(std::size_t k) const { return std::find(fixed_.begin(), fixed_.end(), k) != fixed_.end(); }
+  // (K_F^-1)_kk for the columns fixed at the last solve: how freely column k
+  // still moves, z_k[k] - w^T S^-1 w with w = z_k at the fixed columns.
   double inverse_diagonal(std::size_t k) const {
-    return ldlt_.solve(Eigen::VectorXd::Unit(K_.rows(), Eigen::Index(k)))[Eigen::Index(k)];
+    const Eigen::Index c = Eigen::Index(position_[k]);
+    Eigen::VectorXd w(Eigen::Index(fixed_.size()));
+    for (std::size_t a = 0; a < fixed_.size(); ++a) w[Eigen::Index(a)] = Z_(Eigen::Index(fixed_[a]), c);
+    return Z_(Eigen::Index(k), c) - (fixed_.empty() ? 0.0 : w.dot(S_.solve(w)));
   }
 
   std::size_t solves = 0;
 
 private:
-  const Reduced& r_;
-  Eigen::SparseMatrix<double> K_;
-  std::vector<char> fixed_;
-  Eigen::VectorXd value_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
+  Eigen::Index column(std::size_t a) const { return Eigen::Index(position_[fixed_[a]]); }
+
+  std::vector<std::size_t> position_; // integer column -> column of Z
+  Eigen::VectorXd y0_;
+  Eigen::MatrixXd Z_;
+  std::vector<std::size_t> fixed_;
+  std::vector<double> value_;
+  Eigen::LDLT<Eigen::MatrixXd> S_;
 };
 
 // The free integer columns, cheapest to round first: by the rise of the
@@ -301,7 +318,7 @@ Mixed_integer_quadratic_solution solve_mixed_integer_quadratic(const Mixed_integ
     if (is_integer[r.free[k]]) integer_columns.push_back(k);
   rep.free_integer_variables = integer_columns.size();
 
-  Fixing_solver fs(r);
+  Fixing_solver fs(r, integer_columns);
   Eigen::VectorXd y = fs.solve();
   rep.objective_relaxed = objective(pb, r.E * y + r.c);
   std::size_t left = options.round ? integer_columns.size() : 0;
