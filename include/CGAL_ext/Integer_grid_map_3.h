@@ -129,11 +129,11 @@ struct Integer_grid_map_report {
   /// only if it has fewer of them.
   bool untangled = false;
   /** @{ */
-  /// The untangling's rounds and L-BFGS iterations.
+  /// The untangling's rounds and L-BFGS iterations (kept or not).
   int untangle_rounds = 0, untangle_iterations = 0;
   /** @} */
-  /// The tetrahedra the untangling moved: those within three vertex rings
-  /// of an inverted or flat one.
+  /// The tetrahedra the untangling moved (kept or not): those within three
+  /// vertex rings of an inverted or flat one.
   std::size_t untangle_tets = 0;
   /** @{ */
   /// The least `det(J G^-T)` (the parameter Jacobian against the target's)

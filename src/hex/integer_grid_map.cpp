@@ -789,7 +789,6 @@ Integer_grid_map compute_integer_grid_map(const Integer_grid_map_input& in, cons
   rep.solver = sol.report;
   rep.seconds_solve = std::chrono::duration<double>(Clock::now() - solve_start).count();
 
-  map.chart = top.chart;
   Eigen::VectorXd x = sol.x;
   measure(mesh, x, rep);
   rep.inverted_tets_rounded = rep.inverted_tets;
@@ -812,6 +811,7 @@ Integer_grid_map compute_integer_grid_map(const Integer_grid_map_input& in, cons
     } else {
       rep.untangle_rounds = trial.untangle_rounds;
       rep.untangle_iterations = trial.untangle_iterations;
+      rep.untangle_tets = trial.untangle_tets;
       rep.min_relative_det_rounded = rep.min_relative_det = trial.min_relative_det_rounded;
       rep.seconds_untangle = trial.seconds_untangle;
       rep.split_edges_rejected = trial.split_edges;
