@@ -33,7 +33,8 @@ inline double signed_volume(const std::vector<Eigen::Vector3d>& p, const std::ar
 /// with `G = C_j M C_i^T` (`M` the input's matching between the parents,
 /// the identity inside a parent; `C` the map's charts) and one integer `t`
 /// at its three vertices, to `tolerance` (relative to the parameters' size).
-/// Returns the number of faces whose `t` is not zero.
+/// Returns the number of seams: faces whose transition is not the identity
+/// (`G` or `t`).
 inline std::size_t require_seamless(const Integer_grid_map_input& in, const Integer_grid_map& map,
                                     double tolerance = 1e-8) {
   const auto& group = octahedral_group();
@@ -65,7 +66,7 @@ inline std::size_t require_seamless(const Integer_grid_map_input& in, const Inte
         first = shift;
         have = true;
       }
-      seams += first.norm() > 0.5;
+      seams += first.norm() > 0.5 || !G.isIdentity();
     }
   return seams;
 }

@@ -1131,3 +1131,25 @@ TEST_CASE("generate --hexes: an integer-grid map of the box with a hole, seamles
         if (map.input.tets[t][l] == mesh.mesh.tetrahedra[t][c])
           for (int k = 0; k < 3; ++k) REQUIRE(u.values[12 * t + 3 * c + std::size_t(k)] == map.map.input_parameters[t][l][k]);
 }
+
+TEST_CASE("generate --force without --hexes removes a former run's map.hexex", "[cli][generate][integer_grid_map]") {
+  const std::string out = (work / "stale_map").string();
+  const Run a = run("generate " + l_shape + " --hexes --force -o " + out);
+  INFO(a.err);
+  REQUIRE(a.exit_code == 0);
+  REQUIRE(std::filesystem::exists(out + "/map.hexex"));
+  CHECK(read_report(out).contains("integer_grid_map"));
+  const Run b = run("generate " + l_shape + " --force -o " + out);
+  INFO(b.err);
+  REQUIRE(b.exit_code == 0);
+  CHECK(!std::filesystem::exists(out + "/map.hexex")); // not a map of these frames
+  CHECK(!read_report(out).contains("integer_grid_map"));
+  // Without --force, a map.hexex there is an existing output like the others.
+  const Run c = run("generate " + l_shape + " --hexes --force -o " + out);
+  REQUIRE(c.exit_code == 0);
+  for (const std::string& name : CGAL_ext::pipeline_output_names())
+    if (name != "map.hexex") std::filesystem::remove(out + "/" + name);
+  const Run d = run("generate " + l_shape + " -o " + out);
+  CHECK(d.exit_code == 1);
+  CHECK(d.err.find("map.hexex") != std::string::npos);
+}

@@ -333,7 +333,9 @@ void check_pipeline_output_directory(const std::string& directory, const std::ve
 /// (`IO::write_hexex()`: the map's mesh, `mesh.mesh`'s with the split
 /// edges' midpoints, and its parameters) and the cell array `parameters` of
 /// `frames.vtu` (the map at each tetrahedron's corners,
-/// `Integer_grid_map::input_parameters`).
+/// `Integer_grid_map::input_parameters`); without a map, a `map.hexex`
+/// already in `directory` (a former run's) is removed, so that the files
+/// there are all of one run.
 /// \param directory the output directory
 /// \param mesh the tet mesh
 /// \param frames the frame field and its singularities

@@ -197,11 +197,13 @@ struct Integer_grid_map {
 ///    edge whose holonomy is a rotation about a frame axis, the two
 ///    coordinates across that axis are integers: the edge is on a grid line,
 ///    and so are the curves it makes; their nodes, where curves of different
-///    axes meet, on grid points. One vertex per component is pinned at 0.
+///    axes meet, on grid points.
 /// 4. **Fit and quantization.** The parameters minimise
 ///    `sum_t vol_t |grad u - G_t|^2` under the equalities, the integer
 ///    variables rounded greedily with re-solves, cheapest first (the rise
-///    of the fit's energy, `solve_mixed_integer_quadratic()`).
+///    of the fit's energy, `solve_mixed_integer_quadratic()`). One
+///    coordinate per axis and component is pinned at 0: one that must be an
+///    integer anyway where there is one, so that the pin biases nothing.
 /// 5. **Untangling.** If tetrahedra are inverted or flat, the real unknowns
 ///    (the equalities and the rounded integers held) minimise the
 ///    foldover-free energy of Garanzha et al. 2021 on `K = J G^-T` (the
@@ -221,7 +223,7 @@ struct Integer_grid_map {
 ///    The untangled map, on that mesh, is kept if it has fewer inverted
 ///    tetrahedra, or as many and fewer flat ones; the rounded map otherwise.
 ///
-/// The result is a map HexEx and `metric-frames` read (`IO::write_hexex()`).
+/// The result is a map HexEx reads (`IO::write_hexex()`).
 ///
 /// \param input the mesh and the field
 /// \param options whether to quantize, and how
@@ -230,6 +232,8 @@ struct Integer_grid_map {
 ///   of range, neighbours or matchings that do not agree across a face,
 ///   gradients that are not finite or not positively oriented, or a
 ///   tetrahedron that is flat or negatively oriented
+/// \throws std::runtime_error if the fit's system is not positive definite
+///   (`solve_mixed_integer_quadratic()`)
 Integer_grid_map compute_integer_grid_map(const Integer_grid_map_input& input,
                                           const Integer_grid_map_options& options = {});
 

@@ -53,11 +53,11 @@ struct Mixed_integer_quadratic_options {
   /// Whether the rounding takes the integer variables by the cost of their
   /// rounding (the rise of the objective when one is fixed at its nearest
   /// integer and the others re-optimised, `d^2 / (K^-1)_kk` for a distance
-  /// `d`: one more solve per variable and round), cheapest first; else by
+  /// `d`, from the columns of `K^-1` computed once), cheapest first; else by
   /// their distance to their nearest integer, closest first.
   bool least_cost_first = true;
-  /// Each round fixes the integer variables whose distance to their nearest
-  /// integer is below this, in the order above, ...
+  /// Each round fixes, in the order above, the leading variables whose
+  /// distance to their nearest integer is below this (at least the first), ...
   double rounding_threshold = 0.1;
   /// ... at most this share of those still free (at least one per round),
   /// then re-solves. 0 rounds one variable per solve.
@@ -84,8 +84,9 @@ struct Mixed_integer_quadratic_report {
   std::size_t integer_variables = 0, free_integer_variables = 0;
   /** @} */
   /// Eliminated integer variables that are not an integer combination of
-  /// free ones and were found non-integral after the rounding (0 when every
-  /// equality among integer variables has a unit coefficient to pivot on).
+  /// integer free ones (their final expression) and were found non-integral
+  /// after the rounding (0 when every equality among integer variables has
+  /// a unit coefficient to pivot on).
   std::size_t non_integral_eliminated = 0;
   /// The solves of the reduced system: the first factorises it, the others
   /// (one per rounding round) are low-rank updates of that solution.
@@ -123,7 +124,8 @@ struct Mixed_integer_quadratic_solution {
 /// variables eliminated so far substituted, eliminates one of its variables:
 /// a real one if it has any, else an integer one with a unit coefficient
 /// whose other coefficients are integers (the eliminated variable is then an
-/// integer combination of the others). Among those, the variable that the
+/// integer combination of the others), else the largest coefficient's
+/// (`non_integral_eliminated` counts such variables left non-integral). Among those, the variable that the
 /// fewest eliminated expressions use, which keeps the expressions short. The
 /// equalities hold exactly up to rounding of the coefficients' arithmetic.
 ///

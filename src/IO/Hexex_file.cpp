@@ -19,8 +19,12 @@ void write_hexex(const std::string& path, const Hexex_file& map) {
   for (std::size_t v = 0; v < map.positions.size(); ++v)
     if (!map.positions[v].allFinite()) fail("vertex " + std::to_string(v + 1) + " is not finite");
   for (std::size_t t = 0; t < map.tets.size(); ++t) {
-    for (std::size_t v : map.tets[t])
+    const auto& q = map.tets[t];
+    for (std::size_t v : q)
       if (v >= map.positions.size()) fail("tetrahedron " + std::to_string(t + 1) + " has a vertex out of range");
+    for (std::size_t a = 0; a < 4; ++a)
+      for (std::size_t b = a + 1; b < 4; ++b)
+        if (q[a] == q[b]) fail("tetrahedron " + std::to_string(t + 1) + " has a repeated vertex, which no reader accepts");
     for (const Eigen::Vector3d& u : map.parameters[t])
       if (!u.allFinite()) fail("the parameters of tetrahedron " + std::to_string(t + 1) + " are not finite");
   }

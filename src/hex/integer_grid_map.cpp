@@ -427,20 +427,26 @@ void add_singular_edge_constraints(const Integer_grid_map_input& in, const Topol
   }
 }
 
-// One vertex per component pinned at 0 (the map is defined up to a
-// translation): a vertex of its first boundary face, else of its root.
+// The map is defined up to a translation: per component and axis, one
+// coordinate is fixed at 0. A coordinate that must be an integer anyway (a
+// boundary plane's, a singular curve's), where the component has one, so
+// that the pin only chooses which integer, and moves no plane or curve
+// relative to the mesh; else its root's.
 void add_pins(const Integer_grid_map_input& in, const Topology& top, const std::vector<std::size_t>& node,
               Assembly& as) {
-  std::vector<std::size_t> pin;
-  std::vector<char> on_boundary(top.component_root.size(), 0);
-  for (std::size_t root : top.component_root) pin.push_back(4 * root);
+  const std::size_t components = top.component_root.size();
+  std::vector<std::array<std::size_t, 3>> pin(components);
+  std::vector<std::array<char, 3>> integral(components, {0, 0, 0});
+  for (std::size_t c = 0; c < components; ++c)
+    for (std::size_t k = 0; k < 3; ++k) pin[c][k] = 3 * node[4 * top.component_root[c]] + k;
   for (std::size_t t = 0; t < in.tets.size(); ++t)
-    for (std::size_t f = 0; f < 4; ++f) {
-      const std::size_t k = top.component[t];
-      if (in.neighbors[t][f] < 0 && !on_boundary[k]) pin[k] = 4 * t + (f + 1) % 4, on_boundary[k] = 1;
-    }
-  for (std::size_t c : pin)
-    for (std::size_t r = 0; r < 3; ++r) as.problem.equalities.push_back({{{3 * node[c] + r, 1.0}}, 0.0});
+    for (std::size_t corner = 0; corner < 4; ++corner)
+      for (std::size_t k = 0; k < 3; ++k) {
+        const std::size_t c = top.component[t], v = 3 * node[4 * t + corner] + k;
+        if (as.integer[v] && !integral[c][k]) pin[c][k] = v, integral[c][k] = 1;
+      }
+  for (const auto& p : pin)
+    for (std::size_t v : p) as.problem.equalities.push_back({{{v, 1.0}}, 0.0});
 }
 
 // H = sum_t vol_t B^T B (per coordinate), b = sum_t vol_t B^T g_k.
@@ -581,15 +587,16 @@ std::optional<Eigen::Vector3d> lifted_midpoint(const Map_mesh& m, const Eigen::V
 }
 
 // The flat tetrahedra of x refined: for each, an interior edge, not
-// singular and with no cut face around it, is split at its midpoint if a
-// point for it leaves every half around the edge positive; the point is a
+// singular, with no cut face around it and no tetrahedron around it that
+// another split halves, is split at its midpoint if a point for it leaves
+// every half around the edge positive; the point is a
 // new unknown (appended to x: one point, since no cut face is around the
 // edge), started there. The integers hold a flat tetrahedron's vertices on
 // one plane or line; the midpoint is free to lift the halves off it.
 Map_mesh refine_flat(const Integer_grid_map_input& in, const Topology& top, const std::vector<Edge_loop>& loops,
                      const Map_mesh& base, Eigen::VectorXd& x, std::size_t& split) {
   std::vector<std::optional<Eigen::Vector3d>> chosen(top.edges.size());
-  std::vector<char> tried(top.edges.size(), 0);
+  std::vector<char> tried(top.edges.size(), 0), taken(base.tets.size(), 0);
   for (std::size_t t = 0; t < base.tets.size(); ++t) {
     if (!measure_tet(base, x, t).flat()) continue;
     for (int e = 0; e < 6; ++e) {
@@ -604,8 +611,12 @@ Map_mesh refine_flat(const Integer_grid_map_input& in, const Topology& top, cons
       for (std::size_t f : loop.faces) around.push_back(top.faces[f].t), around.push_back(top.faces[f].u);
       std::sort(around.begin(), around.end());
       around.erase(std::unique(around.begin(), around.end()), around.end());
+      // The halves' check holds for one split per tetrahedron: none around this edge may have another.
+      if (std::any_of(around.begin(), around.end(), [&](std::size_t u) { return taken[u] != 0; })) continue;
       chosen[id] = lifted_midpoint(base, x, around, top.edges[id][0], top.edges[id][1]);
-      if (chosen[id]) break;
+      if (!chosen[id]) continue;
+      for (std::size_t u : around) taken[u] = 1;
+      break;
     }
   }
   std::vector<std::array<std::size_t, 2>> edges;
@@ -633,10 +644,6 @@ Map_mesh refine_flat(const Integer_grid_map_input& in, const Topology& top, cons
   return m;
 }
 
-// Untangles x on m in the reduced space x = E y + c of the solver, grown by
-// the free points appended to x after `reduced_size` entries (the split
-// edges' midpoints); the integer columns are held. Returns the new x, its
-// integer variables snapped.
 // The region the untangling moves: the tetrahedra within `rings` vertex
 // rings of an inverted or flat one, and the unknown points (nodes) all of
 // whose tetrahedra are in it. Away from the defects the map stays as the

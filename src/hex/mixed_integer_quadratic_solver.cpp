@@ -46,7 +46,7 @@ bool is_integral(double a) { return std::abs(a - std::round(a)) <= 1e-9 * std::m
 class Eliminator {
 public:
   Eliminator(std::size_t n, const std::vector<char>& is_integer)
-      : is_integer_(is_integer), eliminated_(n, 0), non_unit_(n, 0), expression_(n), users_(n) {}
+      : is_integer_(is_integer), eliminated_(n, 0), expression_(n), users_(n) {}
 
   // Returns false if the equality was redundant.
   bool add(const Linear_equality& eq, std::size_t number) {
@@ -74,11 +74,6 @@ public:
     e.constant = rhs / ap;
     for (std::size_t m = 0; m < row.size(); ++m)
       if (m != k) e.terms.push_back({row[m].first, -row[m].second / ap});
-    if (is_integer_[p] && !(std::abs(std::abs(ap) - 1) < 1e-12 && is_integral(e.constant) &&
-                            std::all_of(e.terms.begin(), e.terms.end(), [&](const auto& t) {
-                              return is_integer_[t.first] && is_integral(t.second);
-                            })))
-      non_unit_[p] = 1;
     substitute(p, e);
     for (const auto& t : e.terms) users_[t.first].push_back(p);
     expression_[p] = std::move(e);
@@ -87,7 +82,15 @@ public:
   }
 
   bool eliminated(std::size_t i) const { return eliminated_[i] != 0; }
-  bool non_unit(std::size_t i) const { return non_unit_[i] != 0; }
+  // Whether eliminated variable i is an integer combination of integer
+  // variables (its final expression: integer columns, integral
+  // coefficients and constant), so integral once they are.
+  bool integer_combination(std::size_t i) const {
+    const Expression& x = expression_[i];
+    return is_integral(x.constant) && std::all_of(x.terms.begin(), x.terms.end(), [&](const auto& t) {
+             return is_integer_[t.first] && is_integral(t.second);
+           });
+  }
   const Expression& expression(std::size_t i) const { return expression_[i]; }
 
 private:
@@ -119,9 +122,13 @@ private:
         candidate = all_integral && std::abs(a - 1) < 1e-12;
       if (candidate && better(m)) best = m;
     }
-    if (best == row.size()) // integer variables without a unit pivot: the largest coefficient
+    // No unit integer pivot: a real variable, however small its coefficient,
+    // then the largest coefficient.
+    for (int pass = 0; pass < 2 && best == row.size(); ++pass)
       for (std::size_t m = 0; m < row.size(); ++m)
-        if (best == row.size() || std::abs(row[m].second) > std::abs(row[best].second)) best = m;
+        if ((pass == 1 || !is_integer_[row[m].first]) &&
+            (best == row.size() || std::abs(row[m].second) > std::abs(row[best].second)))
+          best = m;
     return best;
   }
 
@@ -146,7 +153,7 @@ private:
   }
 
   const std::vector<char>& is_integer_;
-  std::vector<char> eliminated_, non_unit_;
+  std::vector<char> eliminated_;
   std::vector<Expression> expression_;
   std::vector<std::vector<std::size_t>> users_;
 };
@@ -340,8 +347,9 @@ Mixed_integer_quadratic_solution solve_mixed_integer_quadratic(const Mixed_integ
   out.x = r.E * y + r.c;
   for (std::size_t i = 0; i < n; ++i)
     if (is_integer[i] && options.round) {
-      if (elim.non_unit(i) && !is_integral(out.x[Eigen::Index(i)])) ++rep.non_integral_eliminated;
-      else if (elim.eliminated(i)) out.x[Eigen::Index(i)] = std::round(out.x[Eigen::Index(i)]);
+      if (!elim.eliminated(i)) continue;
+      if (elim.integer_combination(i)) out.x[Eigen::Index(i)] = std::round(out.x[Eigen::Index(i)]); // exact again
+      else if (!is_integral(out.x[Eigen::Index(i)])) ++rep.non_integral_eliminated;
     }
   rep.objective_rounded = objective(pb, out.x);
   out.E = r.E;

@@ -199,6 +199,8 @@ void write_pipeline_outputs(const std::string& directory, const Pipeline_tet_mes
   write_frame_files(dir, written, *frames.frames, *frames.matchings, parameters ? &*parameters : nullptr);
   write_singularities_vtu((dir / "singularities.vtu").string(), written, frames.singular_edges, frames.graph);
   if (map) IO::write_hexex((dir / "map.hexex").string(), {map->map.positions, map->map.tets, map->map.parameters});
+  else if (std::filesystem::is_regular_file(dir / "map.hexex", ec)) // a former run's: not a map of these frames
+    std::filesystem::remove(dir / "map.hexex", ec);
 }
 
 std::string write_pipeline_report(const std::string& directory, const std::string& json) {

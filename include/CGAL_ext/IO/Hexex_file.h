@@ -47,7 +47,8 @@ struct Hexex_file {
 /// \param path the file (conventionally `*.hexex`)
 /// \param map the mesh and its parameters
 /// \throws std::invalid_argument (naming `path`) if the arrays' sizes differ,
-///   an index is out of range, or a value is not finite
+///   an index is out of range, a tetrahedron repeats a vertex, or a value is
+///   not finite
 /// \throws std::runtime_error if the file cannot be written
 void write_hexex(const std::string& path, const Hexex_file& map);
 
