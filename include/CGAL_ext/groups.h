@@ -8,7 +8,8 @@
 /// order of the pipeline (doc/architecture.md).
 
 /// \defgroup PkgCGALExtIO Input and output files
-/// Medit `.mesh` and `.sol`, VTU for ParaView, CubeCover `.fra`.
+/// Medit `.mesh` and `.sol`, VTU for ParaView, CubeCover `.fra` and `.perm`,
+/// HexEx's `.hexex` maps and `.ovm` hex meshes, Medit hex meshes.
 
 /// \defgroup PkgCGALExtMesh Tetrahedral meshes
 /// The triangulation of a tet mesh, its statistics, and Mesh_3 meshing of surfaces.
@@ -27,7 +28,8 @@
 
 /// \defgroup PkgCGALExtHex Integer-grid maps and hexahedra
 /// The parametrization whose integer grid the hexahedra are: seamless,
-/// aligned with the boundary, quantized; its solver and its files.
+/// aligned with the boundary, quantized; its solver and its files. Hex
+/// meshes and their quality.
 
 /// \defgroup PkgCGALExtPipeline The generate pipeline
 /// Mesh, metric, frame field, singularities and output files, as the

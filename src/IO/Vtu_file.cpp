@@ -23,6 +23,7 @@ namespace {
 // VTK cell types.
 constexpr unsigned char vtk_line = 3;
 constexpr unsigned char vtk_tetra = 10;
+constexpr unsigned char vtk_hexahedron = 12;
 
 bool host_is_little_endian() {
   const std::uint16_t one = 1;
@@ -350,6 +351,14 @@ void write_vtu_segments(const std::string& path, const std::vector<std::array<do
                         const Vtu_options& options) {
   write_vtu_cells<2>("write_vtu_segments", "segment", "segments", vtk_line, path, points, segments, cell_data,
                      point_data, options);
+}
+
+void write_vtu_hexahedra(const std::string& path, const std::vector<std::array<double, 3>>& points,
+                         const std::vector<std::array<std::size_t, 8>>& hexahedra,
+                         const std::vector<Vtu_array>& cell_data, const std::vector<Vtu_array>& point_data,
+                         const Vtu_options& options) {
+  write_vtu_cells<8>("write_vtu_hexahedra", "hexahedron", "hexahedra", vtk_hexahedron, path, points, hexahedra,
+                     cell_data, point_data, options);
 }
 
 } // namespace IO

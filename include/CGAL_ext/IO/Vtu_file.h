@@ -4,7 +4,7 @@
 #define CGAL_EXT_IO_VTU_FILE_H
 
 /// \file Vtu_file.h
-/// Writing tetrahedra and segments with named data arrays as VTK XML
+/// Writing tetrahedra, hexahedra and segments with named data arrays as VTK XML
 /// UnstructuredGrid (`.vtu`) files, for ParaView.
 
 #include <array>
@@ -97,6 +97,24 @@ void write_vtu_segments(const std::string& path, const std::vector<std::array<do
                         const std::vector<std::array<std::size_t, 2>>& segments,
                         const std::vector<Vtu_array>& cell_data, const std::vector<Vtu_array>& point_data = {},
                         const Vtu_options& options = {});
+
+/// \ingroup PkgCGALExtIO
+/// Writes a hexahedral mesh and its data arrays as a VTK XML UnstructuredGrid
+/// file, cell type 12 (`VTK_HEXAHEDRON`), the vertices in VTK's order
+/// (`Hex_mesh_3`). Same layout, checks and atomic write as `write_vtu_tetrahedra()`.
+///
+/// \param path the file (conventionally `*.vtu`)
+/// \param points the vertices, all coordinates finite
+/// \param hexahedra 0-based vertex indices of each hexahedron, VTK order
+/// \param cell_data arrays with one tuple per hexahedron
+/// \param point_data arrays with one tuple per point
+/// \param options the encoding
+/// \throws std::invalid_argument as `write_vtu_tetrahedra()` (naming the hexahedron)
+/// \throws std::runtime_error if the file cannot be written
+void write_vtu_hexahedra(const std::string& path, const std::vector<std::array<double, 3>>& points,
+                         const std::vector<std::array<std::size_t, 8>>& hexahedra,
+                         const std::vector<Vtu_array>& cell_data, const std::vector<Vtu_array>& point_data = {},
+                         const Vtu_options& options = {});
 
 } // namespace IO
 } // namespace CGAL_ext
