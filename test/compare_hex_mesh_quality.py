@@ -151,12 +151,14 @@ def main():
     tool = sys.argv[1]
     rng = random.Random(7)
     failures, with_vtk = [], False
-    # Cells that are not hexahedra: a tetrahedron's 4 triangles, a hex missing a face.
+    # Cells that are not hexahedra: a tetrahedron's 4 triangles, a hex missing a face, one with a face reversed.
     for name, points, hexes in random_meshes(rng):
         n = len(points)
         points = points + [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+        flipped = hex_loops(hexes[1])
+        flipped[0] = flipped[0][::-1]  # one face reversed: not consistently oriented
         extra = [[[n, n + 2, n + 1], [n, n + 1, n + 3], [n + 1, n + 2, n + 3], [n, n + 3, n + 2]],
-                 hex_loops(hexes[0])[:5]]
+                 hex_loops(hexes[0])[:5], flipped]
         with_vtk = check(tool, name, points, hexes, extra, failures) or with_vtk
         print("%s: %d hexahedra checked" % (name, len(hexes)))
     print("references: scripts/hex_mesh_quality.py%s" % (" and VTK's vtkMeshQuality" if with_vtk else

@@ -5,8 +5,8 @@
 // file, for test/compare_hex_mesh_quality.py, which checks it against
 // scripts/hex_mesh_quality.py (an independent implementation in Python):
 //   hex_mesh_quality_dump HEX.ovm HEX_SIZE
-// One line per hexahedron: "hex <8 vertices> <sj> <corners> <degenerate> <volume> <size>",
-// one per other cell: "other <cell> <reason>", then "summary <name> <value>" lines.
+// One line per hexahedron: "hex <8 vertices> <sj> <corners> <degenerate> <volume>",
+// one per other cell: "other <0-based cell> <reason>", then "summary <name> <value>" lines.
 #include <CGAL_ext/Hex_mesh_quality_3.h>
 #include <CGAL_ext/IO/Ovm_file.h>
 

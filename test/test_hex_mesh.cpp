@@ -93,12 +93,35 @@ TEST_CASE("Scaled Jacobian: 1 on a cuboid, the frame's on a parallelepiped, -1 m
   CHECK(c.degenerate);
   CHECK(c.value == 0);
 
-  // One corner pushed through the opposite face: only that corner's frame is negative.
+  // Corner 6 pushed inside, to (0.3, 0.3, 0.3): its frame (p5 - p6, p7 - p6,
+  // p2 - p6) = ((0.7, -0.3, 0.7), (-0.3, 0.7, 0.7), (0.7, 0.7, -0.3)) turns
+  // negative; the other corners' and the centre's stay positive.
   Hex_points dented = affine_cube(Eigen::Matrix3d::Identity());
   dented[6] = Eigen::Vector3d(0.3, 0.3, 0.3);
   const Hex_scaled_jacobian d = hex_scaled_jacobian(dented);
-  CHECK(d.corners < 0);
-  CHECK(d.value <= d.corners);
+  Eigen::Matrix3d F;
+  F << 0.7, -0.3, 0.7, -0.3, 0.7, 0.7, 0.7, 0.7, -0.3;
+  const double corner6 = F.determinant() / std::pow(std::sqrt(0.49 + 0.09 + 0.49), 3);
+  CHECK(corner6 < 0);
+  CHECK(d.corners == Approx(corner6).epsilon(1e-13)); // the least corner
+  CHECK(d.value == Approx(corner6).epsilon(1e-13));   // the centre frame is better
+
+  // The scale does not matter, up to the largest and smallest doubles:
+  // no overflow (inf / inf) nor underflow (a frame taken as collapsed).
+  for (double scale : {1e-300, 1e-200, 1e200, 1e300}) {
+    Hex_points s = dented;
+    for (auto& x : s) x *= scale;
+    const Hex_scaled_jacobian ds = hex_scaled_jacobian(s);
+    CHECK_FALSE(ds.degenerate);
+    CHECK(ds.value == Approx(corner6).epsilon(1e-13));
+  }
+  for (double scale : {1e-100, 1e100}) { // volumes of 1e-300 and 1e300: still doubles
+    Hex_points s = dented;
+    for (auto& x : s) x *= scale;
+    CHECK(hex_volume(s) / (scale * scale * scale) == Approx(hex_volume(dented)).epsilon(1e-13));
+  }
+  Hex_points huge = affine_cube(Eigen::Matrix3d::Identity() * 1e300);
+  CHECK(hex_volume(huge) == std::numeric_limits<double>::infinity()); // 1e900: beyond the doubles, not NaN
 }
 
 TEST_CASE("Hex volume: exact for the trilinear hexahedron, additive over its 8 octants", "[hex_mesh][quality]") {
@@ -164,6 +187,7 @@ TEST_CASE("Hex mesh quality: counts, histogram, coverage, and sizes against a me
   CHECK(q.scaled_jacobian.median == Approx(1));
   CHECK(q.scaled_jacobian_histogram[0] == 1);
   CHECK(q.scaled_jacobian_histogram[19] == 15);
+
   CHECK(q.volume == Approx(0.0625 * 14)); // 15 positive hexahedra, 1 negative
   CHECK(q.coverage == Approx(0.875));
   CHECK(q.edge_length.count == 4 * 3 * 3 + 5 * 2 * 3 + 5 * 3 * 2);
@@ -200,6 +224,9 @@ TEST_CASE("Hex mesh quality: bad input is named", "[hex_mesh][quality]") {
   Hex_mesh_quality_options options;
   options.metric = [](const Eigen::Vector3d&) -> Eigen::Matrix3d { return -Eigen::Matrix3d::Identity(); };
   REQUIRE_THROWS_WITH(hex_mesh_quality(m, options), Catch::Contains("not positive definite"));
+  // A positive determinant is not enough: diag(-1, -1, 1).
+  options.metric = [](const Eigen::Vector3d&) -> Eigen::Matrix3d { return Eigen::Vector3d(-1, -1, 1).asDiagonal(); };
+  REQUIRE_THROWS_WITH(hex_mesh_quality(m, options), Catch::Contains("hexahedron 1"));
 }
 
 namespace {
@@ -295,6 +322,16 @@ TEST_CASE(".ovm files: hexahedra in VTK order, other cells reported, bad files n
   CHECK(r.other_cells[1].reason == "not 6 quadrilaterals");
   CHECK(hex_mesh_quality(r.mesh).boundary_quadrilaterals == 10);
 
+  // The first cell with its first face reversed: not consistently oriented.
+  std::string flipped = two_cubes_ovm;
+  flipped.replace(flipped.find("6 0 2 4 6 8 10"), 14, "6 1 2 4 6 8 10");
+  write_text(path, flipped);
+  const IO::Ovm_hex_mesh f = IO::read_ovm_hex_mesh(path);
+  CHECK(f.mesh.hexahedra.size() == 1);
+  REQUIRE(f.other_cells.size() == 3);
+  CHECK(f.other_cells[0].cell == 0);
+  CHECK(f.other_cells[0].reason == "faces not closed or not consistently oriented");
+
   auto expect_error = [&](const std::string& from, const std::string& to, std::size_t line, const std::string& element,
                           const std::string& words) {
     std::string text = two_cubes_ovm;
@@ -309,6 +346,11 @@ TEST_CASE(".ovm files: hexahedra in VTK order, other cells reported, bad files n
   expect_error("2 1 1\nEdges", "2 1 nan\nEdges", 16, "vertex 12", "");
   expect_error("Edges\n23\n9 10", "Edges\n23\n9 12", 19, "edge 1", "out of range");
   expect_error("Edges\n23\n9 10", "Edges\n23\n9 9", 19, "edge 1", "to itself");
+  expect_error("Edges\n23\n9 10", "Edges\n23\n9 x", 19, "edge 1", "'x'");
+  expect_error("4 0 2 4 6\n4 8", "4 0 2 4 x\n4 8", 44, "face 1", "'x'");
+  expect_error("4 0 2 4 6\n4 8", "4 0 1 0 1\n4 8", 44, "face 1", "uses an edge twice");
+  expect_error("6 0 2 4 6 8 10", "6 0 2 4 6 8 y", 61, "polyhedron 1", "'y'");
+  expect_error("6 0 2 4 6 8 10", "60 0 2 4 6 8 10", 61, "polyhedron 1", "valence 60");
   expect_error("4 0 2 4 6\n4 8", "4 0 2 4 7\n4 8", 44, "face 1", "closed loop");
   expect_error("4 0 2 4 6\n4 8", "2 0 1\n4 8", 44, "face 1", "valence 2");
   expect_error("6 0 2 4 6 8 10", "6 0 2 4 6 8 30", 61, "polyhedron 1", "out of range");

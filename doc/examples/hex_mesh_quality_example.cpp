@@ -38,7 +38,8 @@ int main(int argc, char** argv) {
     std::cerr << e.what() << '\n';
     return 1;
   }
-  for (const auto& c : ovm.other_cells) std::printf("cell %zu is not a hexahedron: %s\n", c.cell, c.reason.c_str());
+  for (const auto& c : ovm.other_cells)
+    std::printf("polyhedron %zu is not a hexahedron: %s\n", c.cell + 1, c.reason.c_str());
 
   CGAL_ext::Hex_mesh_quality_options options;
   options.domain_volume = std::atof(argv[3]);

@@ -31,8 +31,9 @@ struct Hex_scaled_jacobian {
   double value = 0;
   /// The least of the 8 corner frames alone.
   double corners = 0;
-  /// Whether a frame has a vector of length 0 (or a product of lengths that
-  /// underflows). That frame counts 0, so a collapsed hexahedron is bad;
+  /// Whether a frame has a vector of length 0 (or one that is not finite:
+  /// coordinates whose differences overflow). That frame counts 0, so a
+  /// collapsed hexahedron is bad;
   /// Verdict returns a huge value there instead (`VERDICT_DBL_MAX`, 1e30 in
   /// VTK 9), which would hide it.
   bool degenerate = false;
@@ -81,7 +82,7 @@ struct Hex_quality_summary {
 /// The summary of a set of values (see `Hex_quality_summary`).
 /// \param values the values, all finite; taken by value since they are sorted
 /// \returns their summary
-Hex_quality_summary summarize(std::vector<double> values);
+Hex_quality_summary hex_quality_summary(std::vector<double> values);
 
 /// \ingroup PkgCGALExtHex
 /// The quality of a hexahedral mesh, as `hex_mesh_quality()` measures it.
@@ -139,7 +140,8 @@ struct Hex_mesh_quality_3 {
 /// \throws std::invalid_argument if a vertex index is out of range or a
 ///   point not finite (naming the hexahedron, 1-based), if the mesh is not
 ///   manifold (`hex_mesh_boundary_quadrilaterals()`), or if the metric gives
-///   a matrix that is not finite
+///   a matrix that is not finite, not symmetric or not positive definite
+///   (naming the hexahedron)
 Hex_mesh_quality_3 hex_mesh_quality(const Hex_mesh_3& mesh, const Hex_mesh_quality_options& options = {});
 
 } // namespace CGAL_ext

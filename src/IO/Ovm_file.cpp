@@ -23,12 +23,43 @@ std::size_t read_section(Medit_tokenizer& tk, const char* name, std::size_t toke
   return tk.read_count(name, tokens_per_record);
 }
 
+// Runs `read`, naming `element` in any Input_error it throws.
+template <class Read>
+void for_element(const std::string& path, const std::string& element, Read&& read) {
+  try {
+    read();
+  } catch (const Input_error& e) {
+    if (!e.element().empty()) throw;
+    throw Input_error(path, e.line(), element, e.problem());
+  }
+}
+
 std::size_t read_index(Medit_tokenizer& tk, const char* what, std::size_t count, const std::string& element) {
   const std::int64_t i = tk.read_int(what);
   if (i < 0 || std::uint64_t(i) >= count)
     tk.fail(element, std::string(what) + " " + std::to_string(i) + " is out of range (0-based, " +
                          std::to_string(count) + " in the file)");
   return std::size_t(i);
+}
+
+struct Valence_range {
+  const char* what;
+  std::size_t least, most;
+};
+
+// Reads a record "valence i_1 .. i_valence" of `element`: the valence in
+// `valence`'s range (at most the number of things it indexes, so that no
+// count allocates beyond what the file holds), each index below `count`.
+void read_index_list(Medit_tokenizer& tk, const std::string& element, const Valence_range& valence, const char* what,
+                     std::size_t count, std::vector<std::size_t>& indices) {
+  for_element(tk.path(), element, [&] {
+    const std::int64_t n = tk.read_int(valence.what);
+    if (n < std::int64_t(valence.least) || std::uint64_t(n) > valence.most)
+      tk.fail(element, "valence " + std::to_string(n) + " is not in [" + std::to_string(valence.least) + ", " +
+                           std::to_string(valence.most) + "]");
+    indices.resize(std::size_t(n));
+    for (std::size_t& i : indices) i = read_index(tk, what, count, element);
+  });
 }
 
 // The cell as 8 vertices in VTK order, or why it is not a hexahedron.
@@ -103,46 +134,51 @@ Ovm_hex_mesh read_ovm_hex_mesh(const std::string& path) {
   std::vector<Eigen::Vector3d>& points = result.mesh.points;
   points.resize(read_section(tk, "Vertices", 3));
   for (std::size_t v = 0; v < points.size(); ++v)
-    for (int k = 0; k < 3; ++k) {
-      try {
-        points[v][k] = tk.read_double("a vertex coordinate");
-      } catch (const Input_error& e) {
-        throw Input_error(path, e.line(), "vertex " + std::to_string(v + 1), e.problem());
-      }
-    }
+    for_element(path, "vertex " + std::to_string(v + 1), [&] {
+      for (int k = 0; k < 3; ++k) points[v][k] = tk.read_double("a vertex coordinate");
+    });
   std::vector<std::array<std::size_t, 2>> edges(read_section(tk, "Edges", 2));
   for (std::size_t e = 0; e < edges.size(); ++e) {
     const std::string element = "edge " + std::to_string(e + 1);
-    for (std::size_t& v : edges[e]) v = read_index(tk, "vertex index", points.size(), element);
+    for_element(path, element, [&] {
+      for (std::size_t& v : edges[e]) v = read_index(tk, "vertex index", points.size(), element);
+    });
     if (edges[e][0] == edges[e][1]) tk.fail(element, "joins vertex " + std::to_string(edges[e][0]) + " to itself");
   }
+  // Faces: their vertex loops. A face uses each edge once, so the loops
+  // together hold at most 2 entries per edge: no file can make them large.
   std::vector<Loop> faces(read_section(tk, "Faces", 4));
+  std::vector<std::size_t> half_edges;
   for (std::size_t f = 0; f < faces.size(); ++f) {
     const std::string element = "face " + std::to_string(f + 1);
-    const std::int64_t valence = tk.read_int("a face valence");
-    if (valence < 3 || std::uint64_t(valence) > tk.remaining_bytes() / 2)
-      tk.fail(element, "valence " + std::to_string(valence) + " is not a polygon's (at least 3, within the file)");
-    std::vector<std::array<std::size_t, 2>> ends;
-    for (std::int64_t j = 0; j < valence; ++j) {
-      const std::size_t h = read_index(tk, "half-edge index", 2 * edges.size(), element);
-      const auto& e = edges[h / 2];
-      ends.push_back(h % 2 ? std::array<std::size_t, 2>{e[1], e[0]} : e);
+    read_index_list(tk, element, {"a face valence", 3, edges.size()}, "half-edge index", 2 * edges.size(), half_edges);
+    for (std::size_t j = 0; j < half_edges.size(); ++j) {
+      const auto& e = edges[half_edges[j] / 2];
+      const auto& next = edges[half_edges[(j + 1) % half_edges.size()] / 2];
+      const std::size_t to = half_edges[j] % 2 ? e[0] : e[1];
+      const std::size_t next_from = half_edges[(j + 1) % half_edges.size()] % 2 ? next[1] : next[0];
+      if (to != next_from) tk.fail(element, "its half-edges do not form a closed loop");
+      faces[f].push_back(half_edges[j] % 2 ? e[1] : e[0]);
     }
-    for (std::size_t j = 0; j < ends.size(); ++j) {
-      if (ends[j][1] != ends[(j + 1) % ends.size()][0])
-        tk.fail(element, "its half-edges do not form a closed loop");
-      faces[f].push_back(ends[j][0]);
-    }
+    auto used = half_edges;
+    for (std::size_t& h : used) h /= 2;
+    std::sort(used.begin(), used.end());
+    if (std::adjacent_find(used.begin(), used.end()) != used.end()) tk.fail(element, "uses an edge twice");
   }
   const std::size_t cells = read_section(tk, "Polyhedra", 5);
+  std::vector<std::size_t> half_faces;
   for (std::size_t c = 0; c < cells; ++c) {
     const std::string element = "polyhedron " + std::to_string(c + 1);
-    const std::int64_t valence = tk.read_int("a polyhedron valence");
-    if (valence < 4 || std::uint64_t(valence) > tk.remaining_bytes() / 2)
-      tk.fail(element, "valence " + std::to_string(valence) + " is not a polyhedron's (at least 4, within the file)");
+    read_index_list(tk, element, {"a polyhedron valence", 4, faces.size()}, "half-face index", 2 * faces.size(),
+                    half_faces);
+    // Only 6 quadrilaterals can make a hexahedron: other cells are not copied.
+    if (half_faces.size() != 6 ||
+        std::any_of(half_faces.begin(), half_faces.end(), [&](std::size_t h) { return faces[h / 2].size() != 4; })) {
+      result.other_cells.push_back({c, "not 6 quadrilaterals"});
+      continue;
+    }
     std::vector<Loop> loops;
-    for (std::int64_t j = 0; j < valence; ++j) {
-      const std::size_t h = read_index(tk, "half-face index", 2 * faces.size(), element);
+    for (std::size_t h : half_faces) {
       Loop loop = faces[h / 2];
       if (h % 2) std::reverse(loop.begin() + 1, loop.end()); // (v0 v1 .. vk) -> (v0 vk .. v1)
       loops.push_back(std::move(loop));

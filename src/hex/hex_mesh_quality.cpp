@@ -23,14 +23,17 @@ constexpr std::array<std::array<int, 4>, 8> corner_frames = {{{{0, 1, 3, 4}}, {{
                                                               {{3, 0, 2, 7}}, {{4, 7, 5, 0}}, {{5, 4, 6, 1}},
                                                               {{6, 5, 7, 2}}, {{7, 6, 4, 3}}}};
 
-// det(a, b, c) / (|a| |b| |c|), or 0 and degenerate when that product is 0.
+// det(a, b, c) / (|a| |b| |c|), or 0 and degenerate when a vector has length
+// 0 or is not finite. Each vector is normalised first, its length by
+// stableNorm (no underflow on tiny edges), so the value is in [-1, 1].
 double scaled_frame(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, bool& degenerate) {
-  const double lengths = a.norm() * b.norm() * c.norm();
-  if (!(lengths > 0)) {
+  const double la = a.stableNorm(), lb = b.stableNorm(), lc = c.stableNorm();
+  const bool usable = la > 0 && lb > 0 && lc > 0 && std::isfinite(la) && std::isfinite(lb) && std::isfinite(lc);
+  if (!usable) {
     degenerate = true;
     return 0;
   }
-  return a.dot(b.cross(c)) / lengths;
+  return (a / la).dot((b / lb).cross(c / lc));
 }
 
 // The Jacobian of the trilinear map of the unit cube onto the hexahedron at (u, v, w).
@@ -56,14 +59,26 @@ Eigen::Vector3d trilinear_point(const Hex_points& p, double u, double v, double 
   return (1 - w) * bottom + w * top;
 }
 
+// The points scaled by a power of two (exact) so that the largest
+// coordinate is below 2: differences and products then cannot overflow,
+// whatever the scale. Returns the exponent e: p = 2^e * scaled.
+int scale_to_unit(Hex_points& p) {
+  double largest = 0;
+  for (const Eigen::Vector3d& x : p) largest = std::max(largest, x.cwiseAbs().maxCoeff());
+  if (!(largest > 0) || !std::isfinite(largest)) return 0;
+  const int e = std::ilogb(largest);
+  for (Eigen::Vector3d& x : p) x = x.unaryExpr([e](double c) { return std::ldexp(c, -e); });
+  return e;
+}
+
 // The two Gauss-Legendre points on [0, 1]; weights 1/2 each.
 const std::array<double, 2> gauss2 = {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)};
 
 Eigen::Matrix3d checked_metric(const Hex_mesh_quality_options& options, const Eigen::Vector3d& x, std::size_t hex) {
   const Eigen::Matrix3d g = options.metric(x);
-  if (!g.allFinite() || !(g.determinant() > 0))
+  if (!g.allFinite() || !g.isApprox(g.transpose()) || Eigen::LLT<Eigen::Matrix3d>(g).info() != Eigen::Success)
     throw std::invalid_argument("hex_mesh_quality: the metric at a point of hexahedron " + std::to_string(hex + 1) +
-                                " is not finite or not positive definite");
+                                " is not finite, not symmetric or not positive definite");
   return g;
 }
 
@@ -90,7 +105,9 @@ double share_within_25_percent(const std::vector<double>& values) {
 
 } // namespace
 
-Hex_scaled_jacobian hex_scaled_jacobian(const Hex_points& p) {
+Hex_scaled_jacobian hex_scaled_jacobian(const Hex_points& points) {
+  Hex_points p = points;
+  scale_to_unit(p); // the value does not depend on the scale
   Hex_scaled_jacobian r;
   r.corners = std::numeric_limits<double>::infinity();
   for (const auto& f : corner_frames) {
@@ -107,15 +124,17 @@ Hex_scaled_jacobian hex_scaled_jacobian(const Hex_points& p) {
   return r;
 }
 
-double hex_volume(const Hex_points& p) {
+double hex_volume(const Hex_points& points) {
+  Hex_points p = points;
+  const int e = scale_to_unit(p);
   double volume = 0;
   for (double u : gauss2)
     for (double v : gauss2)
       for (double w : gauss2) volume += trilinear_jacobian(p, u, v, w).determinant();
-  return volume / 8;
+  return std::ldexp(volume / 8, 3 * e); // +-inf only where the volume itself is beyond the doubles
 }
 
-Hex_quality_summary summarize(std::vector<double> values) {
+Hex_quality_summary hex_quality_summary(std::vector<double> values) {
   Hex_quality_summary s;
   s.count = values.size();
   if (values.empty()) return s;
@@ -154,8 +173,10 @@ Hex_mesh_quality_3 hex_mesh_quality(const Hex_mesh_3& mesh, const Hex_mesh_quali
     r.scaled_jacobian_below_0_2 += sj.value < 0.2;
     r.scaled_jacobian_below_0_5 += sj.value < 0.5;
     r.degenerate += sj.degenerate;
-    const int bin = std::clamp(int(std::floor((sj.value + 1) * 10)), 0, 19);
-    ++r.scaled_jacobian_histogram[std::size_t(bin)];
+    // Bin k holds [-1 + k / 10, -1 + (k + 1) / 10); the bounds as the doubles of those decimals.
+    std::size_t bin = 0;
+    while (bin < 19 && sj.value >= double(int(bin) - 9) / 10) ++bin;
+    ++r.scaled_jacobian_histogram[bin];
     const double volume = hex_volume(p);
     r.volume += volume;
     r.negative_volume_hexes += volume < 0;
@@ -176,8 +197,8 @@ Hex_mesh_quality_3 hex_mesh_quality(const Hex_mesh_3& mesh, const Hex_mesh_quali
     }
   }
   r.vertices = std::size_t(std::count(used.begin(), used.end(), 1));
-  r.scaled_jacobian = summarize(r.scaled_jacobians);
-  r.scaled_jacobian_corners = summarize(corner_values);
+  r.scaled_jacobian = hex_quality_summary(r.scaled_jacobians);
+  r.scaled_jacobian_corners = hex_quality_summary(corner_values);
   r.coverage = r.volume / options.domain_volume;
 
   // Each edge once: sort (edge, hex) and keep the first hexahedron of each edge.
@@ -195,7 +216,7 @@ Hex_mesh_quality_3 hex_mesh_quality(const Hex_mesh_3& mesh, const Hex_mesh_quali
     lengths.push_back((b - a).norm());
     if (options.metric) metric_lengths.push_back(metric_length(options, a, b, edge_hex[order[k]]));
   }
-  r.edge_length = summarize(std::move(lengths));
+  r.edge_length = hex_quality_summary(std::move(lengths));
 
   const auto quads = hex_mesh_boundary_quadrilaterals(mesh.hexahedra);
   r.boundary_quadrilaterals = quads.size();
@@ -213,8 +234,8 @@ Hex_mesh_quality_3 hex_mesh_quality(const Hex_mesh_3& mesh, const Hex_mesh_quali
   if (options.metric) {
     r.metric_edges_within_25_percent = share_within_25_percent(metric_lengths);
     r.metric_sizes_within_25_percent = share_within_25_percent(metric_sizes);
-    r.metric_edge_length = summarize(std::move(metric_lengths));
-    r.metric_size = summarize(std::move(metric_sizes));
+    r.metric_edge_length = hex_quality_summary(std::move(metric_lengths));
+    r.metric_size = hex_quality_summary(std::move(metric_sizes));
   }
   return r;
 }

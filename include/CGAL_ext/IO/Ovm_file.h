@@ -19,7 +19,7 @@ namespace IO {
 /// \ingroup PkgCGALExtIO
 /// A cell of an `.ovm` file that is not a hexahedron.
 struct Ovm_other_cell {
-  std::size_t cell = 0; ///< its 0-based index among the file's polyhedra
+  std::size_t cell = 0; ///< its 0-based index among the file's polyhedra (messages say `polyhedron cell + 1`)
   std::string reason;   ///< why it is not a hexahedron, e.g. "not 6 quadrilaterals"
 };
 
@@ -58,8 +58,9 @@ struct Ovm_hex_mesh {
 ///   header (`OVM BINARY` is not read), a missing section or count, a count
 ///   the rest of the file cannot hold, a value that is not a number or not
 ///   finite, an index out of range, an edge from a vertex to itself, a face
-///   of fewer than 3 half-edges or whose half-edges do not form a closed
-///   loop, and a polyhedron of fewer than 4 half-faces.
+///   of fewer than 3 half-edges, whose half-edges do not form a closed
+///   loop or that uses an edge twice, and a polyhedron of fewer than 4
+///   half-faces (or more than the file's faces).
 Ovm_hex_mesh read_ovm_hex_mesh(const std::string& path);
 
 } // namespace IO
