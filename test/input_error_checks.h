@@ -11,6 +11,7 @@
 #include <catch2/catch.hpp>
 
 #include <cstddef>
+#include <fstream>
 #include <string>
 
 namespace CGAL_ext {
@@ -33,6 +34,20 @@ void expect_input_error(Read read, const std::string& path, std::size_t line, co
     CHECK(e.problem().find(words) != std::string::npos);
     CHECK(std::string(e.what()).find(path + ":") == 0);
   }
+}
+
+/// Writes `text` with its first `from` replaced by `to` to `path`, then
+/// expects `read()` of it to throw as `expect_input_error()` says.
+template <class Read>
+void expect_input_error_after_edit(const std::string& text, const std::string& from, const std::string& to,
+                                   const std::string& path, Read read, std::size_t line, const std::string& element,
+                                   const std::string& words) {
+  std::string edited = text;
+  const auto at = edited.find(from);
+  REQUIRE(at != std::string::npos);
+  edited.replace(at, from.size(), to);
+  std::ofstream(path, std::ios::binary) << edited;
+  expect_input_error(read, path, line, element, words);
 }
 
 } // namespace testing

@@ -147,6 +147,28 @@ TEST_CASE("info --json prints the same figures as one JSON object", "[cli]") {
   CHECK(nlohmann::json::parse(q.out)["mesh"] == odd);
 }
 
+TEST_CASE("info reads Gmsh .msh files: the same figures as the Medit file of the same mesh", "[cli][gmsh]") {
+  // Gmsh's Medit export has 14 digits, its .msh files 16 or all (binary):
+  // the lengths and volume agree to 1e-12, the counts exactly.
+  const Run medit = run("info --json " + data_dir + "/gmsh/box.mesh");
+  REQUIRE(medit.exit_code == 0);
+  const nlohmann::json expected = nlohmann::json::parse(medit.out);
+  for (const char* name : {"box_41.msh", "box_41_binary.msh", "box_22.msh", "box_22_binary.msh", "box_41_gaps.msh"}) {
+    INFO(name);
+    const Run r = run("info --json " + data_dir + "/gmsh/" + name);
+    REQUIRE(r.exit_code == 0);
+    const nlohmann::json info = nlohmann::json::parse(r.out);
+    for (const char* key : {"vertices", "unused_vertices", "tetrahedra", "boundary_facets", "components",
+                            "non_manifold_boundary_edges", "edges", "reoriented_tets"})
+      CHECK(info[key] == expected[key]);
+    for (const char* key : {"volume", "mean_edge_length"})
+      CHECK(info[key].get<double>() == Approx(expected[key].get<double>()).epsilon(1e-12));
+  }
+  const Run bad = run("info " + file_with("bad.msh", "$MeshFormat\n4.0 0 8\n$EndMeshFormat\n"));
+  CHECK(bad.exit_code == 1);
+  CHECK(bad.err.find("bad.msh:2: MSH version '4.0' is not read") != std::string::npos);
+}
+
 TEST_CASE("bad input: one error line naming the file and the line, exit code 1, no crash", "[cli][bad-input]") {
   struct Case {
     const char* name;

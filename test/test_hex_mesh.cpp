@@ -150,7 +150,7 @@ TEST_CASE("Hex volume: exact for the trilinear hexahedron, additive over its 8 o
   CHECK(hex_volume(frustum) == Approx(7.0 / 3).epsilon(1e-14));
 }
 
-TEST_CASE("Boundary quadrilaterals: faces of one hexahedron, outward; a non-manifold face is refused",
+TEST_CASE("Boundary quadrilaterals: faces of one hexahedron, outward, and a non-manifold face is refused",
           "[hex_mesh]") {
   const Hex_mesh_3 m = grid(3, 2, 1);
   const auto quads = hex_mesh_boundary_quadrilaterals(m.hexahedra);
@@ -334,12 +334,8 @@ TEST_CASE(".ovm files: hexahedra in VTK order, other cells reported, bad files n
 
   auto expect_error = [&](const std::string& from, const std::string& to, std::size_t line, const std::string& element,
                           const std::string& words) {
-    std::string text = two_cubes_ovm;
-    const auto at = text.find(from);
-    REQUIRE(at != std::string::npos);
-    text.replace(at, from.size(), to);
-    write_text(path, text);
-    testing::expect_input_error([&] { IO::read_ovm_hex_mesh(path); }, path, line, element, words);
+    testing::expect_input_error_after_edit(two_cubes_ovm, from, to, path, [&] { IO::read_ovm_hex_mesh(path); }, line,
+                                           element, words);
   };
   expect_error("OVM ASCII", "OVM BINARY", 1, "", "only 'OVM ASCII'");
   expect_error("OVM ASCII", "MeshVersionFormatted 2", 1, "", "not an OpenVolumeMesh file");

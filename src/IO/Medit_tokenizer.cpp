@@ -14,18 +14,8 @@
 namespace CGAL_ext {
 namespace IO {
 
-Medit_tokenizer::Medit_tokenizer(std::string path) : path_(std::move(path)) {
-  internal::check_input_file(path_);
-  std::ifstream in(path_, std::ios::binary);
-  if (!in) throw Input_error(path_, 0, "", internal::cannot_open_for_reading());
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw Input_error(path_, 0, "", "read error");
-  data_ = std::move(ss).str();
-  std::size_t i = 0;
-  while (i < data_.size() && std::isspace(static_cast<unsigned char>(data_[i]))) ++i;
-  if (i == data_.size()) throw Input_error(path_, 0, "", "the file is empty");
-}
+Medit_tokenizer::Medit_tokenizer(std::string path)
+    : path_(std::move(path)), data_(internal::read_input_file(path_)) {}
 
 bool Medit_tokenizer::next(std::string_view& token) {
   const std::size_t n = data_.size();

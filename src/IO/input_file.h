@@ -13,6 +13,8 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -37,6 +39,21 @@ inline void check_input_file(const std::string& path) {
 // after the failed open, while errno holds it).
 inline std::string cannot_open_for_reading() {
   return std::string("cannot open the file for reading: ") + std::strerror(errno);
+}
+
+// The whole content of a file for a reader: checked first
+// (check_input_file), then read in binary; an empty (or all white space)
+// file is an error, since no reader can take it.
+inline std::string read_input_file(const std::string& path) {
+  check_input_file(path);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Input_error(path, 0, "", cannot_open_for_reading());
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw Input_error(path, 0, "", "read error");
+  std::string data = std::move(ss).str();
+  if (data.find_first_not_of(" \t\r\n\f\v") == std::string::npos) throw Input_error(path, 0, "", "the file is empty");
+  return data;
 }
 
 // Parses a whole token as a double (an optional leading `+` accepted) into

@@ -5,6 +5,7 @@
 #include "metric_expression.h"
 
 #include <CGAL_ext/IO/Medit_mesh.h>
+#include <CGAL_ext/IO/read_tet_mesh_file.h>
 #include <CGAL_ext/IO/Medit_sol.h>
 #include <CGAL_ext/Metric_tensor.h>
 
@@ -34,7 +35,7 @@ int run_metric(const Metric_request& request) {
     throw std::runtime_error(request.out + ": the file exists; give --force to replace it");
 
   Stage_timer timer;
-  const IO::Medit_mesh mesh = IO::read_medit_mesh(request.mesh);
+  const IO::Medit_mesh mesh = IO::read_tet_mesh_file(request.mesh);
   timer.stage("read mesh");
 
   const std::vector<Eigen::Matrix3d> metrics = evaluate_metric(formula, mesh.vertices, option);

@@ -4,9 +4,9 @@
 #define CGAL_EXT_IO_READ_TET_MESH_H
 
 /// \file read_tet_mesh.h
-/// Reads a Medit `.mesh` file into a `Tet_mesh_triangulation_3`.
+/// Reads a tetrahedral mesh file (Medit `.mesh` or Gmsh `.msh`) into a `Tet_mesh_triangulation_3`.
 
-#include <CGAL_ext/IO/Medit_mesh.h>
+#include <CGAL_ext/IO/read_tet_mesh_file.h>
 #include <CGAL_ext/Tet_mesh_triangulation_3.h>
 #include <CGAL_ext/build_triangulation_from_tets.h>
 
@@ -18,12 +18,12 @@ namespace IO {
 /// \ingroup PkgCGALExtIO
 /// Reads a tetrahedral mesh file and builds its triangulation.
 ///
-/// Equivalent to `read_medit_mesh()` followed by
+/// Equivalent to `read_tet_mesh_file()` followed by
 /// `build_triangulation_from_tets()`, with errors that name the file and the
 /// line of the offending tetrahedron.
 ///
 /// \tparam Geom_traits the kernel of the triangulation
-/// \param path a Medit `.mesh` file
+/// \param path a Medit `.mesh` or a Gmsh `.msh` file
 /// \param tr the output triangulation; vertex info is the 0-based file index,
 ///        cell info the 0-based tetrahedron index and reference
 /// \param mesh if not null, receives the file content (e.g. to write it back
@@ -33,7 +33,7 @@ namespace IO {
 template <class Geom_traits>
 Tet_mesh_build_report read_tet_mesh(const std::string& path, Tet_mesh_triangulation_3<Geom_traits>& tr,
                                     Medit_mesh* mesh = nullptr) {
-  Medit_mesh m = read_medit_mesh(path);
+  Medit_mesh m = read_tet_mesh_file(path);
   Tet_soup_source src;
   src.file = path;
   src.tet_lines = m.tetrahedron_lines;
