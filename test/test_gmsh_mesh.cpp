@@ -133,10 +133,28 @@ TEST_CASE("Gmsh .msh: bad files are named with their line or byte and element", 
   const std::size_t count_end = ascii41.find(' ', nodes + 7);
   expect_error(ascii41, ascii41.substr(nodes, count_end - nodes), "$Nodes\n999999999", 41, "",
                "more than the rest of the file");
-  // Binary data cut short: the byte offset is named.
+  // Binary data cut short: the block and the byte offset are named.
   const std::string binary = read_text(gmsh_dir + "box_41_binary.msh");
   write_text(path, binary.substr(0, binary.size() / 2));
-  testing::expect_input_error([&] { IO::read_gmsh_mesh(path); }, path, 0, "", "(at byte");
+  try {
+    IO::read_gmsh_mesh(path);
+    FAIL("a truncated file was read");
+  } catch (const Input_error& e) {
+    INFO(e.what());
+    CHECK(e.line() == 0);
+    CHECK(e.element().find(" block ") != std::string::npos);
+    CHECK(e.problem().find("(at byte ") != std::string::npos);
+  }
+  // A coordinate that is not a number names its node record.
+  expect_error(ascii22, "\n2 0 0 0\n", "\n2 0 zero 0\n", 7, "node record 2", "'zero'");
+  // $Entities after $Nodes would leave the references unread.
+  const std::size_t entities_end = ascii41.find("$EndEntities\n") + 13;
+  const std::size_t nodes_end = ascii41.find("$EndNodes\n") + 10;
+  std::string moved = ascii41.substr(0, ascii41.find("$Entities")) + ascii41.substr(entities_end, nodes_end - entities_end) +
+                      ascii41.substr(ascii41.find("$Entities"), entities_end - ascii41.find("$Entities")) +
+                      ascii41.substr(nodes_end);
+  write_text(path, moved);
+  testing::expect_input_error([&] { IO::read_gmsh_mesh(path); }, path, 0, "", "$Entities after $Nodes");
   // A big-endian file: the check value 1 reads as 2^24.
   std::string big = binary;
   const auto one = big.find("\x01\x00\x00\x00", big.find("4.1 1 8"), 4);

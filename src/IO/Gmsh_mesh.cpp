@@ -134,7 +134,7 @@ public:
     std::size_t at = pos_;
     for (;;) {
       at = data_.find(end, at);
-      if (at == std::string::npos) fail("", "section " + Input_error::quote(name) + " has no " + end);
+      if (at == std::string::npos) fail("", "section " + Input_error::quote(name) + " has no " + Input_error::quote(end));
       const bool starts = at == 0 || data_[at - 1] == '\n' || data_[at - 1] == '\r';
       if (starts) break;
       at += end.size();
@@ -155,14 +155,26 @@ private:
   bool binary_ = false;
 };
 
+// Tags hashed through splitmix64's finalizer: std::hash of an integer is the
+// integer, so tags that are multiples of the bucket count would all share a
+// bucket and make a crafted file's lookups quadratic.
+struct Scrambled_tag_hash {
+  std::size_t operator()(std::int64_t tag) const {
+    std::uint64_t z = std::uint64_t(tag) + 0x9e3779b97f4a7c15ULL;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return std::size_t(z ^ (z >> 31));
+  }
+};
+
 struct Reader {
   Cursor cursor;
   int major = 0;
   bool binary = false;
   Medit_mesh mesh;
-  std::unordered_map<std::int64_t, std::size_t> node_index; // tag -> 0-based vertex
+  std::unordered_map<std::int64_t, std::size_t, Scrambled_tag_hash> node_index; // tag -> 0-based vertex
   // MSH 4.1: (dimension, entity tag) -> the entity's first physical tag.
-  std::unordered_map<std::int64_t, int> entity_physical[4];
+  std::unordered_map<std::int64_t, int, Scrambled_tag_hash> entity_physical[4];
   std::size_t element_line = 0; // the line of the element being read (ASCII)
 
   explicit Reader(const std::string& path) : cursor(path) {}
@@ -211,12 +223,26 @@ struct Reader {
     if (!binary) mesh.vertex_lines.push_back(cursor.line());
   }
 
-  // MSH 2.2 lists an element once per physical group it is in: the sorted
-  // nodes (and type) of each element kept, to keep the first listing only.
+  // MSH 2.2 lists an element once per physical group it is in, with the
+  // same elementary tag: (type, elementary tag, sorted nodes) of each
+  // element kept, to keep the first listing only.
   std::unordered_map<std::string, int> listed;
+  std::int64_t elementary = 0; // the elementary tag of the MSH 2.2 element being read
   bool listed_before(std::int64_t type, std::vector<std::size_t> v, int reference);
 
   void add_element(std::int64_t tag, std::int64_t type, const std::vector<std::int64_t>& nodes, int reference);
+
+  // Runs `read`, naming `element` in an Input_error that names none (a
+  // token that is not a number, a truncated record).
+  template <class Read>
+  void named(const std::string& element, Read&& read) {
+    try {
+      read();
+    } catch (const Input_error& e) {
+      if (!e.element().empty()) throw;
+      throw Input_error(e.file(), e.line(), element, e.problem());
+    }
+  }
   void read_nodes_v2();
   void read_elements_v2();
   void read_entities_v4();
@@ -258,9 +284,10 @@ void Reader::add_element(std::int64_t tag, std::int64_t type, const std::vector<
 
 bool Reader::listed_before(std::int64_t type, std::vector<std::size_t> v, int reference) {
   std::sort(v.begin(), v.end());
-  std::string key(sizeof(std::size_t) * v.size() + 1, '\0');
-  key[0] = char(type);
-  std::memcpy(&key[1], v.data(), sizeof(std::size_t) * v.size());
+  std::string key(2 * sizeof(std::int64_t) + sizeof(std::size_t) * v.size(), '\0');
+  std::memcpy(&key[0], &type, sizeof type);
+  std::memcpy(&key[sizeof type], &elementary, sizeof elementary);
+  std::memcpy(&key[2 * sizeof type], v.data(), sizeof(std::size_t) * v.size());
   const auto [it, inserted] = listed.emplace(std::move(key), reference);
   // The same element with the same reference is a duplicate the user should
   // hear of (the triangulation refuses it): it is kept.
@@ -281,17 +308,19 @@ int checked_reference(Cursor& cursor, std::int64_t tag, const std::string& eleme
 void Reader::read_nodes_v2() {
   const std::size_t n = count(cursor.integer("the number of nodes"), binary ? 28 : 8, "nodes");
   if (binary) cursor.skip_line_end();
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::int64_t tag = binary ? cursor.int32("a node tag") : cursor.integer("a node tag");
-    std::array<double, 3> x;
-    for (double& c : x) c = binary ? cursor.real("a coordinate") : cursor.number("a coordinate");
-    add_node(tag, x);
-  }
+  for (std::size_t i = 0; i < n; ++i)
+    named("node record " + std::to_string(i + 1), [&] {
+      const std::int64_t tag = binary ? cursor.int32("a node tag") : cursor.integer("a node tag");
+      if (tag <= 0) cursor.fail("node " + std::to_string(tag), "a node tag must be positive");
+      std::array<double, 3> x;
+      for (double& c : x) c = binary ? cursor.real("a coordinate") : cursor.number("a coordinate");
+      add_node(tag, x);
+    });
   cursor.expect("$EndNodes");
 }
 
 void Reader::read_elements_v2() {
-  const std::size_t n = count(cursor.integer("the number of elements"), binary ? 12 : 8, "elements");
+  const std::size_t n = count(cursor.integer("the number of elements"), 8, "elements");
   if (binary) cursor.skip_line_end();
   std::vector<std::int64_t> nodes;
   for (std::size_t done = 0; done < n;) {
@@ -305,17 +334,19 @@ void Reader::read_elements_v2() {
     const std::string where = binary ? "element block of type " + std::to_string(type) : "element " + std::to_string(first);
     const auto t = checked_type(cursor, type, where);
     if (ntags < 0 || ntags > 64) cursor.fail(where, "tag count " + std::to_string(ntags) + " is not in [0, 64]");
-    for (std::size_t k = 0; k < block; ++k, ++done) {
+    for (std::size_t k = 0; k < block; ++k, ++done) named("element record " + std::to_string(done + 1), [&] {
       const std::int64_t tag = binary ? cursor.int32("an element tag") : first;
       std::int64_t physical = 0;
+      elementary = 0;
       for (std::int64_t j = 0; j < ntags; ++j) {
         const std::int64_t v = binary ? cursor.int32("a tag") : cursor.integer("a tag");
         if (j == 0) physical = v;
+        if (j == 1) elementary = v;
       }
       nodes.resize(std::size_t(t->nodes));
       for (std::int64_t& v : nodes) v = binary ? cursor.int32("a node tag") : cursor.integer("a node tag");
       add_element(tag, type, nodes, checked_reference(cursor, physical, "element " + std::to_string(tag)));
-    }
+    });
   }
   cursor.expect("$EndElements");
 }
@@ -344,7 +375,7 @@ void Reader::read_nodes_v4() {
   const std::size_t blocks = ascii_or_binary_count("the number of node blocks", binary ? 20 : 8);
   ascii_or_binary_count("the number of nodes", 1);
   for (int k = 0; k < 2; ++k) binary ? std::int64_t(cursor.size("a node tag bound")) : cursor.integer("a node tag bound");
-  for (std::size_t b = 0; b < blocks; ++b) {
+  for (std::size_t b = 0; b < blocks; ++b) named("node block " + std::to_string(b + 1), [&] {
     const std::int64_t dim = binary ? cursor.int32("an entity dimension") : cursor.integer("an entity dimension");
     binary ? cursor.int32("an entity tag") : cursor.integer("an entity tag");
     const std::int64_t parametric = binary ? cursor.int32("the parametric flag") : cursor.integer("the parametric flag");
@@ -364,7 +395,7 @@ void Reader::read_nodes_v4() {
       for (std::size_t j = 0; j < extra; ++j) binary ? cursor.real("a parametric coordinate") : cursor.number("a parametric coordinate");
       add_node(t, x);
     }
-  }
+  });
   cursor.expect("$EndNodes");
 }
 
@@ -373,7 +404,7 @@ void Reader::read_elements_v4() {
   ascii_or_binary_count("the number of elements", 1);
   for (int k = 0; k < 2; ++k) binary ? std::int64_t(cursor.size("an element tag bound")) : cursor.integer("an element tag bound");
   std::vector<std::int64_t> nodes;
-  for (std::size_t b = 0; b < blocks; ++b) {
+  for (std::size_t b = 0; b < blocks; ++b) named("element block " + std::to_string(b + 1), [&] {
     const std::int64_t dim = binary ? cursor.int32("an entity dimension") : cursor.integer("an entity dimension");
     const std::int64_t entity = binary ? cursor.int32("an entity tag") : cursor.integer("an entity tag");
     const std::int64_t type = binary ? cursor.int32("an element type") : cursor.integer("an element type");
@@ -392,18 +423,24 @@ void Reader::read_elements_v4() {
         v = binary ? std::int64_t(std::min<std::uint64_t>(cursor.size("a node tag"), INT64_MAX)) : cursor.integer("a node tag");
       add_element(tag, type, nodes, reference);
     }
-  }
+  });
   cursor.expect("$EndElements");
 }
 
 Medit_mesh Reader::read() {
   read_format();
-  bool nodes = false, elements = false;
+  bool entities = false, nodes = false, elements = false;
   std::string_view section;
   while (cursor.next(section)) {
-    if (section == "$Nodes" || section == "$Elements" || section == "$Entities") {
+    const bool known = section == "$Nodes" || section == "$Elements" || (section == "$Entities" && major == 4);
+    if (known) {
       if (binary && major == 4) cursor.skip_line_end();
-      if (section == "$Nodes") {
+      if (section == "$Entities") {
+        // The elements' references come from the entities: they must come first, once.
+        if (entities || nodes) cursor.fail("", entities ? "a second $Entities section" : "$Entities after $Nodes");
+        read_entities_v4();
+        entities = true;
+      } else if (section == "$Nodes") {
         if (nodes) cursor.fail("", "a second $Nodes section");
         major == 4 ? read_nodes_v4() : read_nodes_v2();
         nodes = true;
@@ -412,8 +449,6 @@ Medit_mesh Reader::read() {
         if (elements) cursor.fail("", "a second $Elements section");
         major == 4 ? read_elements_v4() : read_elements_v2();
         elements = true;
-      } else {
-        read_entities_v4();
       }
     } else if (section == "$PartitionedEntities") {
       cursor.fail("", "partitioned meshes are not read: save the mesh unpartitioned");

@@ -28,9 +28,10 @@ namespace IO {
 ///   the first physical tag of the element's entity (0 if it has none). An
 ///   entity in several physical groups gives each element once, with the
 ///   first group, not once per group (MSH 2.2 lists such an element once
-///   per group, with each group's tag: the later listings, same nodes and
-///   another tag, are left out; a repeat with the same tag is kept, for
-///   the triangulation to report).
+///   per group, with each group's tag and the same elementary tag: the
+///   later listings, same type, nodes and elementary tag and another
+///   physical tag, are left out; any other repeat is kept, for the
+///   triangulation to report).
 /// - Triangles (type 2) and lines (type 1) are kept as Medit's `Triangles`
 ///   and `Edges`, with their references likewise; points (type 15) and other
 ///   elements of dimension 0 to 2 (quadrangles, higher-order ones) are not
