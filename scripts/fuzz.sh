@@ -4,7 +4,7 @@
 # .sol files, small surfaces). Builds them first if needed (Clang, in
 # ./build-sanitize, with AddressSanitizer and UBSan; see doc/robustness.md).
 #
-#   bash scripts/fuzz.sh [SECONDS] [HARNESS...]     (default: 60 s, all eight)
+#   bash scripts/fuzz.sh [SECONDS] [HARNESS...]     (default: 60 s, all nine)
 #
 # FUZZ_SEED=N fixes libFuzzer's random seed (CI uses 1, so that a run is
 # reproducible); the default, 0, lets libFuzzer pick one.
@@ -21,7 +21,8 @@ seconds=${1:-60}
 shift || true
 harnesses=("$@")
 if [ ${#harnesses[@]} -eq 0 ]; then
-  harnesses=(fuzz_medit_mesh fuzz_medit_sol fuzz_surface fuzz_point_pairs fuzz_frame_field fuzz_hexex fuzz_ovm fuzz_gmsh_mesh)
+  harnesses=(fuzz_medit_mesh fuzz_medit_sol fuzz_surface fuzz_point_pairs fuzz_frame_field fuzz_hexex fuzz_ovm fuzz_gmsh_mesh
+             fuzz_vtk_legacy_mesh)
 fi
 build=build-sanitize
 if [ "${CGAL_EXT_SKIP_BUILD:-0}" != 1 ]; then
@@ -31,14 +32,14 @@ fi
 
 declare -A max_len=([fuzz_medit_mesh]=8192 [fuzz_medit_sol]=4096 [fuzz_surface]=8192
                     [fuzz_point_pairs]=2048 [fuzz_frame_field]=8192 [fuzz_hexex]=4096 [fuzz_ovm]=4096
-                    [fuzz_gmsh_mesh]=8192)
+                    [fuzz_gmsh_mesh]=8192 [fuzz_vtk_legacy_mesh]=8192)
 # The frame-field harness reads .mesh files: it starts from the mesh seeds.
 declare -A seeds=([fuzz_medit_mesh]=fuzz_medit_mesh [fuzz_medit_sol]=fuzz_medit_sol [fuzz_surface]=fuzz_surface
                   [fuzz_point_pairs]=fuzz_point_pairs [fuzz_frame_field]=fuzz_medit_mesh [fuzz_hexex]=fuzz_hexex
-                  [fuzz_ovm]=fuzz_ovm [fuzz_gmsh_mesh]=fuzz_gmsh_mesh)
+                  [fuzz_ovm]=fuzz_ovm [fuzz_gmsh_mesh]=fuzz_gmsh_mesh [fuzz_vtk_legacy_mesh]=fuzz_vtk_legacy_mesh)
 declare -A dict=([fuzz_medit_mesh]=medit.dict [fuzz_medit_sol]=medit.dict [fuzz_surface]=surface.dict
                  [fuzz_point_pairs]=numbers.dict [fuzz_frame_field]=medit.dict [fuzz_hexex]=numbers.dict
-                 [fuzz_ovm]=ovm.dict [fuzz_gmsh_mesh]=gmsh.dict)
+                 [fuzz_ovm]=ovm.dict [fuzz_gmsh_mesh]=gmsh.dict [fuzz_vtk_legacy_mesh]=vtk.dict)
 status=0
 for h in "${harnesses[@]}"; do
   corpus=$build/fuzz-corpus/$h

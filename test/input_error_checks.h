@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 namespace CGAL_ext {
@@ -36,6 +37,12 @@ void expect_input_error(Read read, const std::string& path, std::size_t line, co
   }
 }
 
+/// The bytes of a file (empty if it cannot be read).
+inline std::string read_file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
 /// Writes `text` with its first `from` replaced by `to` to `path`, then
 /// expects `read()` of it to throw as `expect_input_error()` says.
 template <class Read>
@@ -49,6 +56,26 @@ void expect_input_error_after_edit(const std::string& text, const std::string& f
   std::ofstream(path, std::ios::binary) << edited;
   expect_input_error(read, path, line, element, words);
 }
+
+/// `expect_input_error_after_edit()` on one file and reader:
+/// `Edited_file_errors expect_error{path, read}; expect_error(text, from, to, line, element, words);`
+template <class Read>
+struct Edited_file_errors {
+  std::string path; ///< the file written
+  Read read;        ///< reads `path`
+  /// \param text the file's text before the edit
+  /// \param from the text replaced (its first occurrence)
+  /// \param to its replacement
+  /// \param line the line expected in the error (0: not checked)
+  /// \param element the element expected
+  /// \param words words the problem must contain
+  void operator()(const std::string& text, const std::string& from, const std::string& to, std::size_t line,
+                  const std::string& element, const std::string& words) const {
+    expect_input_error_after_edit(text, from, to, path, read, line, element, words);
+  }
+};
+template <class Read>
+Edited_file_errors(std::string, Read) -> Edited_file_errors<Read>;
 
 } // namespace testing
 } // namespace CGAL_ext

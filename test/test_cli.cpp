@@ -147,7 +147,7 @@ TEST_CASE("info --json prints the same figures as one JSON object", "[cli]") {
   CHECK(nlohmann::json::parse(q.out)["mesh"] == odd);
 }
 
-TEST_CASE("info reads Gmsh .msh files: the same figures as the Medit file of the same mesh", "[cli][gmsh]") {
+TEST_CASE("info reads Gmsh .msh and legacy VTK files: the same figures as the Medit file of the same mesh", "[cli][gmsh][vtk]") {
   // Gmsh's Medit export has 14 digits, its .msh files 16 or all (binary):
   // the lengths and volume agree to 1e-12, the counts exactly.
   const Run medit = run("info --json " + data_dir + "/gmsh/box.mesh");
@@ -163,6 +163,16 @@ TEST_CASE("info reads Gmsh .msh files: the same figures as the Medit file of the
       CHECK(info[key] == expected[key]);
     for (const char* key : {"volume", "mean_edge_length"})
       CHECK(info[key].get<double>() == Approx(expected[key].get<double>()).epsilon(1e-12));
+  }
+  // Legacy VTK files of the same mesh (VTK's ASCII has 10 digits).
+  for (const char* name : {"box_51.vtk", "box_51_binary.vtk", "box_42.vtk", "box_42_binary.vtk", "box_gmsh.vtk"}) {
+    INFO(name);
+    const Run r = run("info --json " + data_dir + "/vtk/" + name);
+    REQUIRE(r.exit_code == 0);
+    const nlohmann::json info = nlohmann::json::parse(r.out);
+    for (const char* key : {"vertices", "tetrahedra", "boundary_facets", "components", "edges", "reoriented_tets"})
+      CHECK(info[key] == expected[key]);
+    CHECK(info["volume"].get<double>() == Approx(expected["volume"].get<double>()).epsilon(1e-8));
   }
   const Run bad = run("info " + file_with("bad.msh", "$MeshFormat\n4.0 0 8\n$EndMeshFormat\n"));
   CHECK(bad.exit_code == 1);

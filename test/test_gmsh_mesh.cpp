@@ -42,10 +42,6 @@ std::multiset<std::vector<Corner>> tet_shapes(const IO::Medit_mesh& m) {
   return shapes;
 }
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
 
 void write_text(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
@@ -101,13 +97,10 @@ TEST_CASE("Gmsh .msh: read_tet_mesh builds the same triangulation as from the Me
 }
 
 TEST_CASE("Gmsh .msh: bad files are named with their line or byte and element", "[gmsh][bad-input]") {
-  const std::string ascii41 = read_text(gmsh_dir + "box_41.msh");
-  const std::string ascii22 = read_text(gmsh_dir + "box_22.msh");
+  const std::string ascii41 = testing::read_file_bytes(gmsh_dir + "box_41.msh");
+  const std::string ascii22 = testing::read_file_bytes(gmsh_dir + "box_22.msh");
   const std::string path = "test_bad.msh";
-  auto expect_error = [&](const std::string& text, const std::string& from, const std::string& to, std::size_t line,
-                          const std::string& element, const std::string& words) {
-    testing::expect_input_error_after_edit(text, from, to, path, [&] { IO::read_gmsh_mesh(path); }, line, element, words);
-  };
+  const testing::Edited_file_errors expect_error{path, [&] { IO::read_gmsh_mesh(path); }};
   expect_error(ascii41, "4.1 0 8", "4 0 8", 2, "", "MSH version '4' is not read");
   expect_error(ascii41, "4.1 0 8", "4.1 0 4", 2, "", "data size 4");
   expect_error(ascii41, "$MeshFormat", "$Format", 1, "", "expected $MeshFormat");
@@ -134,7 +127,7 @@ TEST_CASE("Gmsh .msh: bad files are named with their line or byte and element", 
   expect_error(ascii41, ascii41.substr(nodes, count_end - nodes), "$Nodes\n999999999", 41, "",
                "more than the rest of the file");
   // Binary data cut short: the block and the byte offset are named.
-  const std::string binary = read_text(gmsh_dir + "box_41_binary.msh");
+  const std::string binary = testing::read_file_bytes(gmsh_dir + "box_41_binary.msh");
   write_text(path, binary.substr(0, binary.size() / 2));
   try {
     IO::read_gmsh_mesh(path);

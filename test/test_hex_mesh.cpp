@@ -332,26 +332,22 @@ TEST_CASE(".ovm files: hexahedra in VTK order, other cells reported, bad files n
   CHECK(f.other_cells[0].cell == 0);
   CHECK(f.other_cells[0].reason == "faces not closed or not consistently oriented");
 
-  auto expect_error = [&](const std::string& from, const std::string& to, std::size_t line, const std::string& element,
-                          const std::string& words) {
-    testing::expect_input_error_after_edit(two_cubes_ovm, from, to, path, [&] { IO::read_ovm_hex_mesh(path); }, line,
-                                           element, words);
-  };
-  expect_error("OVM ASCII", "OVM BINARY", 1, "", "only 'OVM ASCII'");
-  expect_error("OVM ASCII", "MeshVersionFormatted 2", 1, "", "not an OpenVolumeMesh file");
-  expect_error("2 1 1\nEdges", "2 1 nan\nEdges", 16, "vertex 12", "");
-  expect_error("Edges\n23\n9 10", "Edges\n23\n9 12", 19, "edge 1", "out of range");
-  expect_error("Edges\n23\n9 10", "Edges\n23\n9 9", 19, "edge 1", "to itself");
-  expect_error("Edges\n23\n9 10", "Edges\n23\n9 x", 19, "edge 1", "'x'");
-  expect_error("4 0 2 4 6\n4 8", "4 0 2 4 x\n4 8", 44, "face 1", "'x'");
-  expect_error("4 0 2 4 6\n4 8", "4 0 1 0 1\n4 8", 44, "face 1", "uses an edge twice");
-  expect_error("6 0 2 4 6 8 10", "6 0 2 4 6 8 y", 61, "polyhedron 1", "'y'");
-  expect_error("6 0 2 4 6 8 10", "60 0 2 4 6 8 10", 61, "polyhedron 1", "valence 60");
-  expect_error("4 0 2 4 6\n4 8", "4 0 2 4 7\n4 8", 44, "face 1", "closed loop");
-  expect_error("4 0 2 4 6\n4 8", "2 0 1\n4 8", 44, "face 1", "valence 2");
-  expect_error("6 0 2 4 6 8 10", "6 0 2 4 6 8 30", 61, "polyhedron 1", "out of range");
-  expect_error("Polyhedra\n4", "Polyhedra\n400000", 60, "Polyhedra", "more than the rest of the file");
-  expect_error("Polyhedra", "Cells", 59, "", "expected the section 'Polyhedra'");
+  const testing::Edited_file_errors expect_error{path, [&] { IO::read_ovm_hex_mesh(path); }};
+  expect_error(two_cubes_ovm, "OVM ASCII", "OVM BINARY", 1, "", "only 'OVM ASCII'");
+  expect_error(two_cubes_ovm, "OVM ASCII", "MeshVersionFormatted 2", 1, "", "not an OpenVolumeMesh file");
+  expect_error(two_cubes_ovm, "2 1 1\nEdges", "2 1 nan\nEdges", 16, "vertex 12", "");
+  expect_error(two_cubes_ovm, "Edges\n23\n9 10", "Edges\n23\n9 12", 19, "edge 1", "out of range");
+  expect_error(two_cubes_ovm, "Edges\n23\n9 10", "Edges\n23\n9 9", 19, "edge 1", "to itself");
+  expect_error(two_cubes_ovm, "Edges\n23\n9 10", "Edges\n23\n9 x", 19, "edge 1", "'x'");
+  expect_error(two_cubes_ovm, "4 0 2 4 6\n4 8", "4 0 2 4 x\n4 8", 44, "face 1", "'x'");
+  expect_error(two_cubes_ovm, "4 0 2 4 6\n4 8", "4 0 1 0 1\n4 8", 44, "face 1", "uses an edge twice");
+  expect_error(two_cubes_ovm, "6 0 2 4 6 8 10", "6 0 2 4 6 8 y", 61, "polyhedron 1", "'y'");
+  expect_error(two_cubes_ovm, "6 0 2 4 6 8 10", "60 0 2 4 6 8 10", 61, "polyhedron 1", "valence 60");
+  expect_error(two_cubes_ovm, "4 0 2 4 6\n4 8", "4 0 2 4 7\n4 8", 44, "face 1", "closed loop");
+  expect_error(two_cubes_ovm, "4 0 2 4 6\n4 8", "2 0 1\n4 8", 44, "face 1", "valence 2");
+  expect_error(two_cubes_ovm, "6 0 2 4 6 8 10", "6 0 2 4 6 8 30", 61, "polyhedron 1", "out of range");
+  expect_error(two_cubes_ovm, "Polyhedra\n4", "Polyhedra\n400000", 60, "Polyhedra", "more than the rest of the file");
+  expect_error(two_cubes_ovm, "Polyhedra", "Cells", 59, "", "expected the section 'Polyhedra'");
 }
 
 TEST_CASE("Medit hex meshes: hexahedra in VTK order, boundary quads, edges, references", "[hex_mesh][medit]") {

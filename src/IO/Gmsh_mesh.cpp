@@ -3,6 +3,7 @@
 #include <CGAL_ext/IO/Gmsh_mesh.h>
 
 #include "input_file.h"
+#include "text_binary_cursor.h"
 
 #include <algorithm>
 #include <array>
@@ -47,113 +48,6 @@ std::optional<Element_type> element_type(std::int64_t type) {
   return it->second;
 }
 
-// The file's bytes, read as whitespace-separated tokens (ASCII parts) or as
-// little-endian values (binary parts). Errors name the line while the data
-// is text, the byte offset once binary data has started.
-class Cursor {
-public:
-  explicit Cursor(std::string path) : path_(std::move(path)), data_(internal::read_input_file(path_)) {}
-
-  const std::string& path() const { return path_; }
-  std::size_t line() const { return binary_ ? 0 : line_; }
-  std::size_t remaining() const { return data_.size() - pos_; }
-  void start_binary() { binary_ = true; }
-
-  [[noreturn]] void fail(const std::string& element, const std::string& problem) const { fail_at(line(), element, problem); }
-  // At a given line: an element's first line, when reading it went further.
-  [[noreturn]] void fail_at(std::size_t line, const std::string& element, const std::string& problem) const {
-    throw Input_error(path_, binary_ ? 0 : line, element,
-                      binary_ ? problem + " (at byte " + std::to_string(pos_) + ")" : problem);
-  }
-
-  bool next(std::string_view& token) {
-    while (pos_ < data_.size() && std::isspace(static_cast<unsigned char>(data_[pos_]))) {
-      if (data_[pos_] == '\n') ++line_;
-      ++pos_;
-    }
-    if (pos_ == data_.size()) return false;
-    const std::size_t start = pos_;
-    while (pos_ < data_.size() && !std::isspace(static_cast<unsigned char>(data_[pos_]))) ++pos_;
-    token = std::string_view(data_).substr(start, pos_ - start);
-    return true;
-  }
-
-  std::string_view token(const char* what) {
-    std::string_view t;
-    if (!next(t)) fail("", std::string("unexpected end of file, expected ") + what);
-    return t;
-  }
-
-  std::int64_t integer(const char* what) {
-    const std::string_view t = token(what);
-    std::int64_t v = 0;
-    const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
-    if (r.ec != std::errc() || r.ptr != t.data() + t.size())
-      fail("", std::string("expected ") + what + " (an integer), found " + Input_error::quote(t));
-    return v;
-  }
-
-  double number(const char* what) {
-    const std::string_view t = token(what);
-    double v = 0;
-    if (!internal::parse_double(t, v)) fail("", std::string("expected ") + what + ", found " + Input_error::quote(t));
-    if (!std::isfinite(v)) fail("", std::string(what) + " " + Input_error::quote(t) + " is not finite");
-    return v;
-  }
-
-  // A little-endian value of N bytes, as an unsigned integer.
-  template <std::size_t N>
-  std::uint64_t raw(const char* what) {
-    if (remaining() < N) fail("", std::string("unexpected end of file, expected ") + what);
-    std::uint64_t v = 0;
-    for (std::size_t i = 0; i < N; ++i) v |= std::uint64_t(static_cast<unsigned char>(data_[pos_ + i])) << (8 * i);
-    pos_ += N;
-    return v;
-  }
-  std::int64_t int32(const char* what) { return static_cast<std::int32_t>(static_cast<std::uint32_t>(raw<4>(what))); }
-  std::uint64_t size(const char* what) { return raw<8>(what); }
-  double real(const char* what) {
-    const std::uint64_t bits = raw<8>(what);
-    double v;
-    std::memcpy(&v, &bits, 8);
-    if (!std::isfinite(v)) fail("", std::string(what) + " is not finite");
-    return v;
-  }
-
-  // Binary data starts after the end of the current line.
-  void skip_line_end() {
-    while (pos_ < data_.size() && data_[pos_] != '\n') ++pos_;
-    if (pos_ == data_.size()) fail("", "unexpected end of file before binary data");
-    ++pos_;
-    ++line_;
-  }
-
-  // Skips an unknown section: to the token after `$End<name>`.
-  void skip_section(std::string_view name) {
-    const std::string end = "$End" + std::string(name.substr(1));
-    std::size_t at = pos_;
-    for (;;) {
-      at = data_.find(end, at);
-      if (at == std::string::npos) fail("", "section " + Input_error::quote(name) + " has no " + Input_error::quote(end));
-      const bool starts = at == 0 || data_[at - 1] == '\n' || data_[at - 1] == '\r';
-      if (starts) break;
-      at += end.size();
-    }
-    for (; pos_ < at; ++pos_)
-      if (data_[pos_] == '\n') ++line_;
-    pos_ += end.size();
-  }
-
-  void expect(std::string_view keyword) {
-    const std::string_view t = token(std::string(keyword).c_str());
-    if (t != keyword) fail("", "expected " + std::string(keyword) + ", found " + Input_error::quote(t));
-  }
-
-private:
-  std::string path_, data_;
-  std::size_t pos_ = 0, line_ = 1;
-  bool binary_ = false;
-};
 
 // Tags hashed through splitmix64's finalizer: std::hash of an integer is the
 // integer, so tags that are multiples of the bucket count would all share a
@@ -168,7 +62,7 @@ struct Scrambled_tag_hash {
 };
 
 struct Reader {
-  Cursor cursor;
+  internal::Text_binary_cursor cursor;
   int major = 0;
   bool binary = false;
   Medit_mesh mesh;
@@ -294,13 +188,13 @@ bool Reader::listed_before(std::int64_t type, std::vector<std::size_t> v, int re
   return !inserted && it->second != reference;
 }
 
-std::optional<Element_type> checked_type(Cursor& cursor, std::int64_t type, const std::string& element) {
+std::optional<Element_type> checked_type(internal::Text_binary_cursor& cursor, std::int64_t type, const std::string& element) {
   const auto t = element_type(type);
   if (!t) cursor.fail(element, "unknown element type " + std::to_string(type));
   return t;
 }
 
-int checked_reference(Cursor& cursor, std::int64_t tag, const std::string& element) {
+int checked_reference(internal::Text_binary_cursor& cursor, std::int64_t tag, const std::string& element) {
   if (tag < INT32_MIN || tag > INT32_MAX) cursor.fail(element, "physical tag " + std::to_string(tag) + " is not a 32-bit integer");
   return int(tag);
 }

@@ -65,12 +65,12 @@ struct Generate_plan {
 Generate_plan plan_generate(const Generate_request& r) {
   const Pipeline_input_kind kind = pipeline_input_kind(r.input);
   if (kind == Pipeline_input_kind::unknown)
-    throw Usage_error("INPUT '" + r.input + "': expected a tet mesh (.mesh .msh), a surface (.off .obj .stl .ply) or builtin:NAME");
+    throw Usage_error("INPUT '" + r.input + "': expected a tet mesh (.mesh .msh .vtk), a surface (.off .obj .stl .ply) or builtin:NAME");
   const bool is_mesh = kind == Pipeline_input_kind::tet_mesh;
   if ((r.size || r.smooth_surface || r.max_memory) && is_mesh)
     throw Usage_error("--size, --smooth-surface and --max-memory apply to surface and builtin inputs; a tet mesh input is used as it is");
   if (r.sol_path && !is_mesh)
-    throw Usage_error("--metric SOL needs a tet mesh INPUT (.mesh .msh): a generated mesh has no vertices the .sol could match");
+    throw Usage_error("--metric SOL needs a tet mesh INPUT (.mesh .msh .vtk): a generated mesh has no vertices the .sol could match");
   Generate_plan plan;
   plan.options = r.options;
   plan.options.hard_boundary = !r.soft_boundary;

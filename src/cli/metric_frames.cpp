@@ -137,7 +137,7 @@ CLI::Option* add_output_option(CLI::App& app, std::string& path, const std::stri
 
 // The positional MESH of info, walk and transport.
 void add_mesh_argument(CLI::App& app, std::string& mesh) {
-  app.add_option("MESH", mesh, "a tetrahedral mesh: Medit .mesh or Gmsh .msh")->required();
+  app.add_option("MESH", mesh, "a tetrahedral mesh: Medit .mesh, Gmsh .msh or legacy VTK .vtk")->required();
 }
 
 // info, its options bound to `r`.
@@ -211,7 +211,7 @@ CLI::App* add_transport(CLI::App& app, Transport_request& r) {
 // metric, its options bound to `r`.
 CLI::App* add_metric(CLI::App& app, Metric_request& r) {
   CLI::App* sub = app.add_subcommand("metric", "write a metric .sol file from formulas in x, y, z (constant formulas for a constant tensor)");
-  sub->add_option("MESH", r.mesh, "a tet mesh (Medit .mesh or Gmsh .msh): the metric is evaluated at its vertices")->required();
+  sub->add_option("MESH", r.mesh, "a tet mesh (Medit .mesh, Gmsh .msh, VTK .vtk): the metric is evaluated at its vertices")->required();
   CLI::Option* expr =
       sub->add_option("--expr", r.expr,
                       "6 comma-separated expressions of x, y, z: m11, m21, m22, m31, m32, m33, e.g. "
@@ -253,8 +253,9 @@ const char* generate_details =
     "  report.json         counts, hex size, expected hexes, singular curves and\n"
     "                      nodes, non-meshable edges, energies, face angles,\n"
     "                      alignment, timings\n\n"
-    "INPUT is a tet mesh (Medit .mesh or Gmsh .msh), a closed surface (.off .obj .stl .ply) meshed\n"
-    "with CGAL Mesh_3 at size --size, or builtin:NAME (ball, torus, box_with_hole, ...).\n\n"
+    "INPUT is a tet mesh (Medit .mesh, Gmsh .msh, legacy VTK .vtk), a closed\n"
+    "surface (.off .obj .stl .ply) meshed with CGAL Mesh_3 at size --size, or\n"
+    "builtin:NAME (ball, torus, box_with_hole, ...).\n\n"
     "Metric (default: the identity) and hex size: unit length in the metric is one\n"
     "hex edge, so g = I/h^2 asks for hexes of edge h, diag(1,4,1)/h^2 for h, h/2, h.\n"
     "Without --hex-size, a given metric is used as it is; with no metric at all, h\n"
@@ -264,7 +265,7 @@ const char* generate_details =
 // generate, its options bound to `r`.
 CLI::App* add_generate(CLI::App& app, Generate_request& r) {
   CLI::App& sub = *app.add_subcommand("generate", "frame field in a metric: frames.fra, mesh, VTU files, singular edges, report");
-  sub.add_option("INPUT", r.input, "a tet mesh (.mesh .msh), a closed surface (.off .obj .stl .ply) or builtin:NAME")->required();
+  sub.add_option("INPUT", r.input, "a tet mesh (.mesh .msh .vtk), a closed surface (.off .obj .stl .ply) or builtin:NAME")->required();
   add_output_option(sub, r.out_dir, "OUTDIR", "output directory (created if missing)");
   sub.add_flag("--force", r.force, "replace output files that exist (never the input)");
   CLI::Option* sol = sub.add_option("--metric", r.sol_path,
@@ -369,8 +370,9 @@ int main(int argc, char** argv) {
   app.formatter(std::make_shared<Help_formatter>());
   app.set_version_flag("--version", std::string("metric-frames ") + CGAL_EXT_VERSION, "print the version and exit");
   app.require_subcommand(1);
-  app.footer("Meshes are ASCII Medit .mesh files (as MMG, Gmsh and TetGen -g write them) or Gmsh\n"
-             ".msh files (MSH 2.2 or 4.1, ASCII or binary).\n"
+  app.footer("Tet meshes are ASCII Medit .mesh files (as MMG, Gmsh and TetGen -g write\n"
+             "them), Gmsh .msh files (MSH 2.2 or 4.1, ASCII or binary) or legacy VTK .vtk\n"
+             "unstructured grids, told apart by their extension.\n"
              "metric-frames SUBCOMMAND --help, or metric-frames help SUBCOMMAND, gives a\n"
              "subcommand's arguments. Exit codes: 0 success, 1 bad input or failure, 2 bad usage.");
   Generate_request generate;

@@ -113,7 +113,7 @@ void choose_hex_size(const Pipeline_tet_mesh& mesh, const Pipeline_metric_input&
 
 Pipeline_input_kind pipeline_input_kind(const std::string& input) {
   if (input.rfind("builtin:", 0) == 0) return Pipeline_input_kind::builtin;
-  if (has_extension(input, {".mesh", ".msh"})) return Pipeline_input_kind::tet_mesh;
+  if (has_extension(input, {".mesh", ".msh", ".vtk"})) return Pipeline_input_kind::tet_mesh;
   if (has_extension(input, {".off", ".obj", ".stl", ".ply"})) return Pipeline_input_kind::surface;
   return Pipeline_input_kind::unknown;
 }
@@ -123,7 +123,7 @@ Pipeline_tet_mesh load_tet_mesh(const std::string& input, const Tetrahedralize_o
   Stage_clock clock(stage);
   const Pipeline_input_kind kind = pipeline_input_kind(input);
   if (kind == Pipeline_input_kind::unknown)
-    throw std::invalid_argument("'" + input + "': expected a tet mesh (.mesh .msh), a surface (.off .obj .stl .ply) or builtin:NAME");
+    throw std::invalid_argument("'" + input + "': expected a tet mesh (.mesh .msh .vtk), a surface (.off .obj .stl .ply) or builtin:NAME");
   Pipeline_tet_mesh m;
   m.from_file = kind == Pipeline_input_kind::tet_mesh;
   if (m.from_file) {
