@@ -48,6 +48,39 @@ TEST_CASE("Legacy VTK: VTK 9's 5.1 and 4.2 layouts, ASCII and binary, and Gmsh's
   CHECK(g.tetrahedra == medit.tetrahedra);
 }
 
+TEST_CASE("Legacy VTK: field data before the points, METADATA after arrays, float points", "[vtk]") {
+  const IO::Medit_mesh reference = IO::read_vtk_legacy_mesh(data + "vtk/box_51_binary.vtk");
+  const std::string path = "test_extra.vtk";
+  auto read_edited = [&](std::string text, const std::string& at, const std::string& insert) {
+    const auto where = text.find(at);
+    REQUIRE(where != std::string::npos);
+    text.insert(where, insert);
+    std::ofstream(path, std::ios::binary) << text;
+    return IO::read_vtk_legacy_mesh(path);
+  };
+  // What VTK 9 writes: a time value as field data, information keys after an array.
+  const std::string metadata = "METADATA\nINFORMATION 1\nNAME L2_NORM_RANGE LOCATION vtkDataArray\nDATA 2 0 1.7\n\n";
+  const std::string ascii = testing::read_file_bytes(data + "vtk/box_51.vtk");
+  for (const auto& [at, insert] : {std::pair<std::string, std::string>{"POINTS", "FIELD FieldData 2\nTIME 1 1 double\n0.5\n"
+                                                                                "CYCLE 1 1 int\n3\n"},
+                                   {"CELLS", metadata}, {"CONNECTIVITY", metadata}, {"CELL_TYPES", metadata}}) {
+    INFO(at);
+    const IO::Medit_mesh m = read_edited(ascii, at, insert);
+    CHECK(m.tetrahedra == reference.tetrahedra);
+  }
+  // In binary: the field's values are big-endian bytes.
+  const std::string binary = testing::read_file_bytes(data + "vtk/box_51_binary.vtk");
+  const std::string time = std::string("FIELD FieldData 1\nTIME 1 1 double\n") + std::string("\x3f\xe0\0\0\0\0\0\0", 8) + "\n";
+  CHECK(read_edited(binary, "POINTS", time).vertices == reference.vertices);
+  // Points in float, in ASCII: rounded to single precision as in binary.
+  std::string single = ascii;
+  single.replace(single.find("POINTS 380 double"), 17, "POINTS 380 float");
+  std::ofstream(path, std::ios::binary) << single;
+  const IO::Medit_mesh f = IO::read_vtk_legacy_mesh(path);
+  for (std::size_t v = 0; v < f.vertices.size(); ++v)
+    for (int k = 0; k < 3; ++k) CHECK(f.vertices[v][k] == double(float(f.vertices[v][k])));
+}
+
 TEST_CASE("Legacy VTK: bad files are named with their line or byte and cell", "[vtk][bad-input]") {
   const std::string v51 = testing::read_file_bytes(data + "vtk/box_51.vtk");
   const std::string v42 = testing::read_file_bytes(data + "vtk/box_42.vtk");
@@ -67,7 +100,7 @@ TEST_CASE("Legacy VTK: bad files are named with their line or byte and cell", "[
   std::string hex = v42;
   hex.replace(last_ten, 2, "12");
   std::ofstream(path, std::ios::binary) << hex;
-  testing::expect_input_error([&] { IO::read_vtk_legacy_mesh(path); }, path, 1586, "cell 1452", "only tetrahedra");
+  testing::expect_input_error([&] { IO::read_vtk_legacy_mesh(path); }, path, 3041, "cell 1452", "only tetrahedra"); // the line of its type
   // The first tetrahedron (cell 278, after the triangles) given point 380166.
   expect_error(v42, "\n4 ", "\n4 380", 412, "cell 278", "out of range");
   const std::string bin = testing::read_file_bytes(data + "vtk/box_51_binary.vtk");

@@ -16,11 +16,24 @@ namespace IO {
 namespace {
 
 // VTK cell types (vtkCellType.h) that are volumes, other than VTK_TETRA.
-const std::set<std::int64_t> volume_cell_types = {11, 12, 13, 14, 15, 16, 24, 25, 26, 27, 29, 31, 32, 33,
-                                                  37, 42, 71, 72, 73, 74, 78, 79, 80, 81};
-// Cell types of dimension 0 to 2 that are not read.
-const std::set<std::int64_t> dropped_cell_types = {1,  2,  4,  6,  7,  8,  9,  21, 22, 23, 28,
-                                                   30, 34, 35, 36, 68, 69, 70, 75, 76, 77};
+const std::set<std::int64_t> volume_cell_types = {11, 12, 13, 14, 15, 16, 24, 25, 26, 27, 29, 31, 32, 33, 37,
+                                                  41, 42, 64, 65, 66, 67, 71, 72, 73, 74, 78, 79, 80, 81};
+// Cell types of dimension 0 to 2 (and the empty cell) that are not read.
+const std::set<std::int64_t> dropped_cell_types = {0,  1,  2,  4,  6,  7,  8,  9,  21, 22, 23, 28, 30,
+                                                   34, 35, 36, 60, 61, 62, 63, 68, 69, 70, 75, 76, 77};
+
+// Bytes per value of a VTK data type name in binary files (0: not skippable).
+std::size_t type_size(std::string_view type) {
+  if (type == "bit") return 0;
+  if (type == "unsigned_char" || type == "char") return 1;
+  if (type == "unsigned_short" || type == "short") return 2;
+  if (type == "unsigned_int" || type == "int" || type == "float" || type == "vtktypeint32" || type == "vtktypeuint32")
+    return 4;
+  if (type == "unsigned_long" || type == "long" || type == "double" || type == "vtktypeint64" ||
+      type == "vtktypeuint64" || type == "vtkIdType")
+    return 8;
+  return 0;
+}
 
 struct Reader {
   internal::Text_binary_cursor cursor;
@@ -28,7 +41,7 @@ struct Reader {
   bool classic = true; // the CELLS layout of versions before 5
   Medit_mesh mesh;
   std::vector<std::int64_t> offsets, connectivity; // cell c: connectivity[offsets[c] .. offsets[c + 1])
-  std::vector<std::size_t> cell_lines;
+  std::vector<std::size_t> cell_lines, type_lines; // ASCII: the line of each cell's ids and of its type
 
   explicit Reader(const std::string& path) : cursor(path) { cursor.set_big_endian(true); }
 
@@ -46,6 +59,7 @@ struct Reader {
                 : static_cast<std::int32_t>(static_cast<std::uint32_t>(cursor.raw<4>(what)));
   }
 
+  void skip_field_data();
   void read_header();
   void read_points();
   void read_cells();
@@ -75,6 +89,35 @@ void Reader::read_header() {
     cursor.fail("", "dataset " + Input_error::quote(dataset) + " is not read: only UNSTRUCTURED_GRID holds tetrahedra");
 }
 
+// A FIELD block (VTK writes the dataset's field data, e.g. a time value,
+// before the points): its arrays are read over.
+void Reader::skip_field_data() {
+  cursor.token("the field's name");
+  const std::size_t arrays = count("field arrays", 8);
+  for (std::size_t a = 0; a < arrays; ++a) {
+    std::string_view name = cursor.token("a field array's name");
+    if (name == "METADATA") {
+      cursor.skip_past_empty_line();
+      name = cursor.token("a field array's name");
+    }
+    const std::size_t components = count("a field array's components", 1);
+    const std::size_t tuples = count("a field array's tuples", 1);
+    const std::string_view type = cursor.token("a field array's data type");
+    const std::size_t bytes = type_size(type);
+    if (!bytes) cursor.fail("", "field array of type " + Input_error::quote(type) + " is not read");
+    if (components && tuples > cursor.remaining() / components)
+      cursor.fail("", "a field array larger than the rest of the file");
+    const std::size_t values = components * tuples;
+    if (binary) {
+      cursor.skip_line_end();
+      if (values > cursor.remaining() / bytes) cursor.fail("", "a field array larger than the rest of the file");
+      cursor.skip_bytes(values * bytes, "a field array's values");
+    } else {
+      for (std::size_t i = 0; i < values; ++i) cursor.token("a field value");
+    }
+  }
+}
+
 void Reader::read_points() {
   const std::size_t n = count("points", binary ? 12 : 6);
   const std::string_view type = cursor.token("the points' data type");
@@ -89,7 +132,8 @@ void Reader::read_points() {
   for (std::size_t v = 0; v < n; ++v) {
     try {
       for (double& c : mesh.vertices[v])
-        c = binary ? (is_double ? cursor.real("a coordinate") : cursor.real32("a coordinate")) : cursor.number("a coordinate");
+        c = binary ? (is_double ? cursor.real("a coordinate") : cursor.real32("a coordinate"))
+                   : (is_double ? cursor.number("a coordinate") : double(float(cursor.number("a coordinate"))));
     } catch (const Input_error& e) {
       throw Input_error(e.file(), e.line(), "point " + std::to_string(v), e.problem());
     }
@@ -101,7 +145,14 @@ void Reader::read_points() {
 void Reader::read_connectivity_arrays(std::size_t offsets_count, std::size_t connectivity_count) {
   for (auto* array : {&offsets, &connectivity}) {
     const bool is_offsets = array == &offsets;
-    cursor.expect(is_offsets ? "OFFSETS" : "CONNECTIVITY");
+    std::string_view keyword = cursor.token(is_offsets ? "OFFSETS" : "CONNECTIVITY");
+    if (keyword == "METADATA") { // information keys of the offsets, not read
+      cursor.skip_past_empty_line();
+      keyword = cursor.token("CONNECTIVITY");
+    }
+    if (keyword != (is_offsets ? "OFFSETS" : "CONNECTIVITY"))
+      cursor.fail("", std::string("expected ") + (is_offsets ? "OFFSETS" : "CONNECTIVITY") + ", found " +
+                          Input_error::quote(keyword));
     const std::string_view type = cursor.token("the array's data type");
     if (type != "vtktypeint64" && type != "vtktypeint32")
       cursor.fail("", "cell arrays of type " + Input_error::quote(type) + " are not read: vtktypeint64 or vtktypeint32");
@@ -119,6 +170,8 @@ void Reader::read_cells() {
   if (!classic) {
     const std::size_t n_offsets = count("cell offsets", binary ? 4 : 2);
     const std::size_t n_connectivity = count("cell point ids", binary ? 4 : 2);
+    if (n_offsets + n_connectivity > cursor.remaining() / (binary ? 4 : 2))
+      cursor.fail("", "the cell arrays' counts are more than the rest of the file can hold");
     read_connectivity_arrays(n_offsets, n_connectivity);
     return;
   }
@@ -127,11 +180,17 @@ void Reader::read_cells() {
   if (binary) cursor.skip_line_end();
   offsets.assign(1, 0);
   for (std::size_t c = 0; c < n; ++c) {
-    const std::int64_t k = id(false, "a cell's point count");
-    if (k < 0 || std::uint64_t(k) > size - std::min<std::size_t>(size, connectivity.size() + c + 1))
-      cursor.fail("cell " + std::to_string(c), "point count " + std::to_string(k) + " goes beyond the cell list's size");
-    if (!binary) cell_lines.push_back(cursor.line());
-    for (std::int64_t j = 0; j < k; ++j) connectivity.push_back(id(false, "a point id"));
+    const std::string element = "cell " + std::to_string(c);
+    try {
+      const std::int64_t k = id(false, "a cell's point count");
+      if (k < 0 || std::uint64_t(k) > size - std::min<std::size_t>(size, connectivity.size() + c + 1))
+        cursor.fail(element, "point count " + std::to_string(k) + " goes beyond the cell list's size");
+      if (!binary) cell_lines.push_back(cursor.line());
+      for (std::int64_t j = 0; j < k; ++j) connectivity.push_back(id(false, "a point id"));
+    } catch (const Input_error& e) {
+      if (!e.element().empty()) throw;
+      throw Input_error(e.file(), e.line(), element, e.problem());
+    }
     offsets.push_back(std::int64_t(connectivity.size()));
   }
   if (connectivity.size() + n != size)
@@ -145,7 +204,10 @@ std::vector<std::int64_t> Reader::read_cell_types() {
     cursor.fail("", std::to_string(n) + " cell types for " + std::to_string(offsets.size() - 1) + " cells");
   if (binary) cursor.skip_line_end();
   std::vector<std::int64_t> types(n);
-  for (std::int64_t& t : types) t = id(false, "a cell type");
+  for (std::int64_t& t : types) {
+    t = id(false, "a cell type");
+    if (!binary) type_lines.push_back(cursor.line());
+  }
   return types;
 }
 
@@ -154,13 +216,16 @@ void Reader::assemble(const std::vector<std::int64_t>& types) {
     const std::string element = "cell " + std::to_string(c);
     const std::size_t line = c < cell_lines.size() ? cell_lines[c] : 0;
     auto fail = [&](const std::string& problem) { throw Input_error(cursor.path(), line, element, problem); };
+    auto type_fail = [&](const std::string& problem) {
+      throw Input_error(cursor.path(), c < type_lines.size() ? type_lines[c] : 0, element, problem);
+    };
     const std::int64_t type = types[c];
     if (volume_cell_types.count(type))
-      fail("cell type " + std::to_string(type) + " is a volume other than the tetrahedron (10): only tetrahedra are "
+      type_fail("cell type " + std::to_string(type) + " is a volume other than the tetrahedron (10): only tetrahedra are "
            "read; leaving it out would change the domain");
     if (dropped_cell_types.count(type)) continue;
     const std::size_t expected = type == 10 ? 4 : type == 5 ? 3 : type == 3 ? 2 : 0;
-    if (!expected) fail("unknown cell type " + std::to_string(type));
+    if (!expected) type_fail("unknown cell type " + std::to_string(type));
     const std::size_t begin = std::size_t(offsets[c]), size = std::size_t(offsets[c + 1] - offsets[c]);
     if (size != expected)
       fail("a cell of type " + std::to_string(type) + " with " + std::to_string(size) + " points, not " +
@@ -199,7 +264,9 @@ Medit_mesh read_vtk_legacy_mesh(const std::string& path) {
   bool points = false, cells = false;
   std::string_view keyword;
   while (r.cursor.next(keyword)) {
-    if (keyword == "POINTS" && !points) {
+    if (keyword == "FIELD" && !points) {
+      r.skip_field_data();
+    } else if (keyword == "POINTS" && !points) {
       r.read_points();
       points = true;
     } else if (keyword == "METADATA") {

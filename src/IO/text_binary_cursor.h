@@ -98,6 +98,11 @@ public:
     return v;
   }
 
+  void skip_bytes(std::size_t n, const char* what) {
+    if (remaining() < n) fail("", std::string("unexpected end of file in ") + what);
+    pos_ += n;
+  }
+
   double real32(const char* what) {
     const auto bits = static_cast<std::uint32_t>(raw<4>(what));
     float v;

@@ -20,7 +20,8 @@ namespace IO {
 /// as `read_medit_mesh()`.
 ///
 /// - `POINTS` in `float` or `double` (VTK 9 and ParaView write `double` for
-///   double data; `float` points are rounded to single precision);
+///   double data; `float` points are rounded to single precision, in ASCII
+///   files too);
 /// - `CELLS` in both layouts: the classic one (`n size`, then per cell its
 ///   point count and ids; files up to version 4.2, and Gmsh's) and VTK 9's
 ///   (version 5.1: `OFFSETS` and `CONNECTIVITY` arrays, `vtktypeint64` or
@@ -29,12 +30,15 @@ namespace IO {
 ///   kept as Medit's `Triangles` and `Edges`; vertices, polygons, quads and
 ///   higher-order cells of dimension 0 to 2 are not read; other volume
 ///   cells (hexahedra, wedges, pyramids, polyhedra, higher-order ones) are an
-///   error, since leaving them out would change the domain;
-/// - references are 0 (cell and point data, after the cells, are not read).
+///   error naming the cell and, in ASCII, the line of its type, since
+///   leaving them out would change the domain;
+/// - references are 0 (cell and point data, after the cells, are not read);
+/// - a `FIELD` block before the points (VTK writes the dataset's field data
+///   there, e.g. a time value) and `METADATA` blocks are read over.
 ///
 /// Binary data are big-endian, as the format requires. The lines of the
-/// vertices and tetrahedra are recorded for ASCII files in the classic
-/// layout, and left empty otherwise.
+/// vertices are recorded for ASCII files, those of the tetrahedra for ASCII
+/// files in the classic layout; they are left empty otherwise.
 /// \param path the file
 /// \returns the mesh
 /// \throws Input_error naming the file, the line (ASCII) or byte offset

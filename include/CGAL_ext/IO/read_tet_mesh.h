@@ -4,7 +4,7 @@
 #define CGAL_EXT_IO_READ_TET_MESH_H
 
 /// \file read_tet_mesh.h
-/// Reads a tetrahedral mesh file (Medit `.mesh` or Gmsh `.msh`) into a `Tet_mesh_triangulation_3`.
+/// Reads a tetrahedral mesh file (Medit, Gmsh or legacy VTK) into a `Tet_mesh_triangulation_3`.
 
 #include <CGAL_ext/IO/read_tet_mesh_file.h>
 #include <CGAL_ext/Tet_mesh_triangulation_3.h>
@@ -23,7 +23,7 @@ namespace IO {
 /// line of the offending tetrahedron.
 ///
 /// \tparam Geom_traits the kernel of the triangulation
-/// \param path a Medit `.mesh` or a Gmsh `.msh` file
+/// \param path a Medit `.mesh`, Gmsh `.msh` or legacy VTK `.vtk` file (by its extension)
 /// \param tr the output triangulation; vertex info is the 0-based file index,
 ///        cell info the 0-based tetrahedron index and reference
 /// \param mesh if not null, receives the file content (e.g. to write it back
